@@ -1,0 +1,42 @@
+#include "surfacing/mesh.h"
+
+#include "surfacing/error.h"
+
+namespace sketchsurf {
+
+Eigen::MatrixX3d vertex_matrix(const TriMesh& mesh) {
+  Eigen::MatrixX3d V(mesh.n_vertices(), 3);
+  for (auto v : mesh.vertices()) V.row(v.idx()) = to_eigen(mesh.point(v)).transpose();
+  return V;
+}
+
+Eigen::MatrixX3i face_matrix(const TriMesh& mesh) {
+  Eigen::MatrixX3i F(mesh.n_faces(), 3);
+  for (auto f : mesh.faces()) {
+    int c = 0;
+    for (auto v : f.vertices()) F(f.idx(), c++) = v.idx();
+  }
+  return F;
+}
+
+TriMesh mesh_from_matrices(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> vh;
+  vh.reserve(V.rows());
+  for (Eigen::Index i = 0; i < V.rows(); ++i) vh.push_back(mesh.add_vertex(to_openmesh(V.row(i))));
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      if (F(f, c) < 0 || F(f, c) >= V.rows())
+        throw Error::processing("triangle " + std::to_string(f) + " names vertex " +
+                                std::to_string(F(f, c)) + " of " + std::to_string(V.rows()));
+    }
+    auto fh = mesh.add_face(vh[F(f, 0)], vh[F(f, 1)], vh[F(f, 2)]);
+    if (!fh.is_valid())
+      throw Error::processing("triangle " + std::to_string(f) +
+                              " makes the mesh non-manifold or flips its orientation");
+  }
+  mesh.update_normals();
+  return mesh;
+}
+
+}  // namespace sketchsurf

@@ -1,0 +1,31 @@
+#pragma once
+// The one mesh type for geometry: an OpenMesh triangle mesh in double precision.
+
+#include <Eigen/Core>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+namespace sketchsurf {
+
+struct MeshTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::Status);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
+};
+
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+
+inline Eigen::Vector3d to_eigen(const OpenMesh::Vec3d& p) { return {p[0], p[1], p[2]}; }
+inline OpenMesh::Vec3d to_openmesh(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+/// Vertex positions as a #V x 3 matrix (vertex i in row i).
+Eigen::MatrixX3d vertex_matrix(const TriMesh& mesh);
+/// Triangle vertex indices as a #F x 3 matrix.
+Eigen::MatrixX3i face_matrix(const TriMesh& mesh);
+/// Builds a mesh from #V x 3 positions and #F x 3 triangles; throws Error (Processing) on a
+/// triangle that OpenMesh cannot add (non-manifold or inconsistently oriented).
+TriMesh mesh_from_matrices(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+
+}  // namespace sketchsurf

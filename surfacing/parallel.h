@@ -1,0 +1,48 @@
+#pragma once
+// Deterministic parallel loops: the result never depends on the thread count as long as each
+// index writes only its own output.
+
+#include <algorithm>
+#include <cstddef>
+#include <exception>
+#include <thread>
+#include <vector>
+
+namespace sketchsurf {
+
+/// Number of worker threads to use for a request of `threads` (0 = all hardware threads).
+inline unsigned resolve_threads(unsigned threads) {
+  if (threads != 0) return threads;
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+/// Calls fn(i) for every i in [begin, end) on up to `threads` threads (0 = all), in contiguous
+/// chunks. The first exception thrown by any call is rethrown on the calling thread.
+template <class Fn>
+void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn) {
+  if (end <= begin) return;
+  const std::size_t n = end - begin;
+  const std::size_t workers = std::min<std::size_t>(resolve_threads(threads), n);
+  if (workers <= 1) {
+    for (std::size_t i = begin; i < end; ++i) fn(i);
+    return;
+  }
+  std::vector<std::exception_ptr> errors(workers);
+  std::vector<std::thread> pool;
+  pool.reserve(workers - 1);
+  auto run_chunk = [&](std::size_t w) {
+    const std::size_t lo = begin + n * w / workers, hi = begin + n * (w + 1) / workers;
+    try {
+      for (std::size_t i = lo; i < hi; ++i) fn(i);
+    } catch (...) {
+      errors[w] = std::current_exception();
+    }
+  };
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run_chunk, w);
+  run_chunk(0);
+  for (auto& t : pool) t.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace sketchsurf

@@ -1,0 +1,27 @@
+#pragma once
+// The sketchsurf CLI: one add_*_command per subcommand, each in its own cmd_*.cpp.
+// A command's callback throws sketchsurf::Error; main() maps it to the exit code.
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "surfacing/progress.h"
+#include "surfacing/sketch/io/sketch_io.h"
+
+namespace sketchsurf::cli {
+
+/// Options shared by every command.
+struct GlobalOptions {
+  bool verbose = false;  ///< print the parameters in effect and extra detail to stderr
+  bool quiet = false;    ///< no progress or warnings on stderr
+};
+
+void add_info_command(CLI::App& app, const GlobalOptions& global);
+void add_convert_command(CLI::App& app, const GlobalOptions& global);
+
+/// Progress on stderr: a bar on a terminal, one plain line per stage and per 10% otherwise.
+ProgressCallback stderr_progress(const GlobalOptions& global);
+/// Prints reader warnings to stderr as "FILE: warning: ...", unless quiet.
+void print_warnings(const GlobalOptions& global, const std::string& file, const Warnings& warnings);
+
+}  // namespace sketchsurf::cli

@@ -1,0 +1,39 @@
+// sketchsurf: the command-line front end. Parses, dispatches to a command, maps errors to exit
+// codes (0 ok, 2 usage, 3 invalid input, 4 processing failed, 130 cancelled).
+
+#include <iostream>
+#include <new>
+
+#include "surfacing/error.h"
+#include "tools/sketchsurf/commands.h"
+
+int main(int argc, char** argv) {
+  using namespace sketchsurf;
+  CLI::App app{"sketchsurf: piecewise-smooth surfaces from unstructured 3D sketches"};
+  app.set_version_flag("--version", std::string("sketchsurf ") + SKETCHSURF_VERSION);
+  app.require_subcommand(1);
+  app.fallthrough();
+  cli::GlobalOptions global;
+  app.add_flag("-v,--verbose", global.verbose, "Print the parameters in effect and more detail");
+  app.add_flag("-q,--quiet", global.quiet, "No progress or warnings on stderr");
+
+  //cli::add_info_command(app, global);
+  //cli::add_convert_command(app, global);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);  // prints help, version or the parse error
+    return rc == 0 ? 0 : 2;
+  } catch (const Error& e) {
+    std::cerr << "sketchsurf: error: " << e.what() << "\n";
+    return exit_code(e.kind());
+  } catch (const std::bad_alloc&) {
+    std::cerr << "sketchsurf: error: out of memory\n";
+    return 4;
+  } catch (const std::exception& e) {
+    std::cerr << "sketchsurf: error: " << e.what() << "\n";
+    return 4;
+  }
+  return 0;
+}
