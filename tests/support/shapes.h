@@ -1,0 +1,56 @@
+#pragma once
+// Sketches and meshes with known answers, generated for the tests (and the bundled examples).
+// Every generator is deterministic; noise takes an explicit seed.
+
+#include <functional>
+
+#include "surfacing/mesh.h"
+#include "surfacing/sketch/sketch.h"
+
+namespace sketchsurf::testing {
+
+/// Points of a parametric curve c(t), t in [t0, t1], spaced about `spacing` apart.
+Stroke sample_curve(const std::function<Eigen::Vector3d(double)>& c, double t0, double t1,
+                    double spacing);
+
+/// Axis-aligned cube centred at the origin with side `side`: one stroke along each of the 12
+/// edges, plus (when `cross_strokes`) one stroke across the middle of each of the 6 faces.
+/// Points about side/50 apart.
+Sketch cube_sketch(double side = 1.0, bool cross_strokes = true);
+
+/// Cylinder around +z centred at the origin: the two rim circles, `side_strokes` vertical strokes
+/// along the side, and one stroke across each cap.
+Sketch cylinder_sketch(double radius = 0.5, double height = 1.0, int side_strokes = 4);
+
+/// Sphere centred at the origin: `meridians` great half-circles through the poles and the equator.
+Sketch sphere_sketch(double radius = 0.5, int meridians = 4);
+
+/// Torus around +z: `tube_circles` small circles around the tube, plus the outer and inner equators.
+Sketch torus_sketch(double major = 0.5, double minor = 0.2, int tube_circles = 8);
+
+/// An open saddle-like sheet z = c (x^2 - y^2) over [-h, h]^2: its 4 border curves marked
+/// boundary, plus 3 interior strokes in each direction.
+Sketch sheet_sketch(double half = 0.5, double curvature = 0.4);
+
+/// Adds independent Gaussian noise of standard deviation `sigma` to every point.
+void add_noise(Sketch& sketch, double sigma, unsigned seed);
+/// Scales by `s` then translates by `t` every point (and the mirror plane).
+void transform(Sketch& sketch, double s, const Eigen::Vector3d& t);
+
+/// Icosphere: an icosahedron subdivided `subdivisions` times, projected to the sphere.
+/// 10 * 4^k + 2 vertices, closed, outward oriented.
+TriMesh icosphere(int subdivisions, double radius = 1.0,
+                  const Eigen::Vector3d& center = Eigen::Vector3d::Zero());
+/// An icosphere whose vertices are pushed radially onto the surface of a box with half extents
+/// `half` and corners rounded with radius `rounding` (the rounded-cube proxy of the tests).
+TriMesh rounded_box_mesh(int subdivisions, const Eigen::Vector3d& half, double rounding);
+/// An icosphere pushed radially onto a capped cylinder around +z (radius, half height, rim
+/// rounding), the cylinder proxy of the tests.
+TriMesh rounded_cylinder_mesh(int subdivisions, double radius, double half_height, double rounding);
+/// Torus around +z as a closed triangle mesh, `n_major` x `n_minor` quads split in two.
+TriMesh torus_mesh(int n_major, int n_minor, double major, double minor);
+
+/// Distance from p to the surface of the axis-aligned box with half extents `half` at the origin.
+double box_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& half);
+
+}  // namespace sketchsurf::testing
