@@ -1,0 +1,417 @@
+#include "surfacing/segment/association.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include "surfacing/error.h"
+#include "surfacing/parallel.h"
+
+namespace sketchsurf {
+
+namespace {
+
+using V3 = Eigen::Vector3d;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+V3 closest_on_triangle(const V3& p, const V3& a, const V3& b, const V3& c) {
+  const V3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const V3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const V3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = va + vb + vc;
+  if (!(std::abs(denom) > 0)) return a;  // degenerate triangle
+  return a + ab * (vb / denom) + ac * (vc / denom);
+}
+
+double box_distance2(const V3& p, const V3& lo, const V3& hi) {
+  return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
+}
+
+// Faces on both sides of every face edge, and the primal edge between them.
+struct DualGraph {
+  std::vector<int> neighbor;  // 3 per face: the face across local edge i, -1 on a border
+  std::vector<int> edge;      // 3 per face: the primal edge index of local edge i
+  Eigen::MatrixX3d centroids;
+};
+
+// One A* search workspace per chunk of strokes; reset only what a search touched.
+struct PathSearch {
+  std::vector<double> cost;
+  std::vector<int> parent_slot;  // 3 * parent face + local edge index, -1 for the start
+  std::vector<int> touched;
+
+  explicit PathSearch(std::size_t faces) : cost(faces, kInf), parent_slot(faces, -1) {}
+
+  // Crossed primal edges of a shortest dual path from face `from` to face `to`, in order, or
+  // false when `to` was not reached within `max_faces` settled faces.
+  bool trace(const DualGraph& dual, int from, int to, int max_faces, std::vector<int>& crossed) {
+    crossed.clear();
+    for (int f : touched) {
+      cost[f] = kInf;
+      parent_slot[f] = -1;
+    }
+    touched.clear();
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+    const V3 goal = dual.centroids.row(to);
+    auto heuristic = [&](int f) { return (V3(dual.centroids.row(f)) - goal).norm(); };
+    cost[from] = 0.0;
+    touched.push_back(from);
+    open.emplace(heuristic(from), from);
+    int settled = 0;
+    bool found = false;
+    while (!open.empty()) {
+      const auto [priority, f] = open.top();
+      open.pop();
+      if (priority > cost[f] + heuristic(f) + 1e-15) continue;  // stale entry
+      if (f == to) {
+        found = true;
+        break;
+      }
+      if (++settled > max_faces) break;
+      const V3 cf = dual.centroids.row(f);
+      for (int i = 0; i < 3; ++i) {
+        const int g = dual.neighbor[3 * f + i];
+        if (g < 0) continue;
+        const double c = cost[f] + (V3(dual.centroids.row(g)) - cf).norm();
+        if (c < cost[g]) {
+          if (cost[g] == kInf) touched.push_back(g);
+          cost[g] = c;
+          parent_slot[g] = 3 * f + i;
+          open.emplace(c + heuristic(g), g);
+        }
+      }
+    }
+    if (!found) return false;
+    for (int f = to; parent_slot[f] >= 0; f = parent_slot[f] / 3)
+      crossed.push_back(dual.edge[parent_slot[f]]);
+    std::reverse(crossed.begin(), crossed.end());
+    return true;
+  }
+};
+
+struct Attachment {
+  int edge;
+  V3 sample;
+};
+
+}  // namespace
+
+bool AssociationOptions::valid(std::string* why) const {
+  auto fail = [&](const char* m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (!(crossed_weight > 0) || !std::isfinite(crossed_weight))
+    return fail("association crossed_weight must be positive");
+  if (!(uncrossed_weight > 0) || !std::isfinite(uncrossed_weight))
+    return fail("association uncrossed_weight must be positive");
+  if (!(max_segment > 0) || !std::isfinite(max_segment))
+    return fail("association max_segment must be positive");
+  if (max_path_faces < 1) return fail("association max_path_faces must be at least 1");
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// AABB tree
+
+struct ClosestFaceTree::Impl {
+  struct Node {
+    V3 lo, hi;
+    int left = -1, right = -1;  // children, -1 for a leaf
+    int begin = 0, end = 0;     // range in `order` for a leaf
+  };
+  Eigen::MatrixX3d V;
+  Eigen::MatrixX3i F;
+  std::vector<int> order;
+  std::vector<Node> nodes;
+
+  int build(int begin, int end, const Eigen::MatrixX3d& centroids) {
+    Node node;
+    node.lo = V3::Constant(kInf);
+    node.hi = V3::Constant(-kInf);
+    for (int i = begin; i < end; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const V3 p = V.row(F(order[i], k));
+        node.lo = node.lo.cwiseMin(p);
+        node.hi = node.hi.cwiseMax(p);
+      }
+    const int id = static_cast<int>(nodes.size());
+    nodes.push_back(node);
+    if (end - begin <= 4) {
+      nodes[id].begin = begin;
+      nodes[id].end = end;
+      return id;
+    }
+    V3 clo = V3::Constant(kInf), chi = V3::Constant(-kInf);
+    for (int i = begin; i < end; ++i) {
+      clo = clo.cwiseMin(V3(centroids.row(order[i])));
+      chi = chi.cwiseMax(V3(centroids.row(order[i])));
+    }
+    int axis = 0;
+    (chi - clo).maxCoeff(&axis);
+    const int mid = (begin + end) / 2;
+    std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                     [&](int a, int b) {
+                       const double ca = centroids(a, axis), cb = centroids(b, axis);
+                       return ca < cb || (ca == cb && a < b);
+                     });
+    const int left = build(begin, mid, centroids);
+    const int right = build(mid, end, centroids);
+    nodes[id].left = left;
+    nodes[id].right = right;
+    return id;
+  }
+};
+
+ClosestFaceTree::ClosestFaceTree(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->V = V;
+  impl_->F = F;
+  if (F.rows() == 0) return;
+  Eigen::MatrixX3d centroids(F.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    centroids.row(f) = (V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))) / 3.0;
+  impl_->order.resize(F.rows());
+  for (int f = 0; f < F.rows(); ++f) impl_->order[f] = f;
+  impl_->nodes.reserve(2 * F.rows() / 4 + 8);
+  impl_->build(0, static_cast<int>(F.rows()), centroids);
+}
+
+ClosestFaceTree::~ClosestFaceTree() = default;
+ClosestFaceTree::ClosestFaceTree(ClosestFaceTree&&) noexcept = default;
+ClosestFaceTree& ClosestFaceTree::operator=(ClosestFaceTree&&) noexcept = default;
+
+int ClosestFaceTree::closest_face(const Eigen::Vector3d& p, Eigen::Vector3d* closest) const {
+  const Impl& t = *impl_;
+  if (t.nodes.empty()) return -1;
+  double best = kInf;
+  int best_face = -1;
+  V3 best_point = V3::Zero();
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Impl::Node& node = t.nodes[stack[--top]];
+    if (box_distance2(p, node.lo, node.hi) > best) continue;
+    if (node.left < 0) {
+      for (int i = node.begin; i < node.end; ++i) {
+        const int f = t.order[i];
+        const V3 q = closest_on_triangle(p, t.V.row(t.F(f, 0)), t.V.row(t.F(f, 1)),
+                                         t.V.row(t.F(f, 2)));
+        const double d = (q - p).squaredNorm();
+        if (d < best || (d == best && f < best_face)) {
+          best = d;
+          best_face = f;
+          best_point = q;
+        }
+      }
+      continue;
+    }
+    const Impl::Node& l = t.nodes[node.left];
+    const Impl::Node& r = t.nodes[node.right];
+    const double dl = box_distance2(p, l.lo, l.hi), dr = box_distance2(p, r.lo, r.hi);
+    // Push the farther child first so the nearer one is visited first.
+    if (dl <= dr) {
+      stack[top++] = node.right;
+      stack[top++] = node.left;
+    } else {
+      stack[top++] = node.left;
+      stack[top++] = node.right;
+    }
+  }
+  if (closest) *closest = best_point;
+  return best_face;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+double edge_size(const TriMesh& mesh, TriMesh::EdgeHandle e) {
+  const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+  const V3 pa = to_eigen(mesh.point(mesh.from_vertex_handle(h0)));
+  const V3 pb = to_eigen(mesh.point(mesh.to_vertex_handle(h0)));
+  std::vector<V3> opposite;
+  for (auto h : {h0, h1})
+    if (!mesh.is_boundary(h))
+      opposite.push_back(to_eigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)))));
+  if (opposite.size() == 2) return (opposite[0] - opposite[1]).norm();
+  if (opposite.size() == 1) return 2.0 * (opposite[0] - 0.5 * (pa + pb)).norm();
+  return (pa - pb).norm();
+}
+
+StrokeGraph associate(const Sketch& sketch, const TriMesh& proxy_in,
+                      const AssociationOptions& options) {
+  std::string why;
+  if (!options.valid(&why)) throw Error::usage(why);
+  TriMesh proxy = proxy_in;
+  proxy.garbage_collection();
+  if (proxy.n_faces() == 0) throw Error::processing("the proxy mesh has no triangle");
+
+  StrokeGraph graph;
+  const Eigen::MatrixX3i F = face_matrix(proxy);
+  graph.positions = vertex_matrix(proxy);
+  const Eigen::MatrixX3d& V = graph.positions;
+  const int nv = static_cast<int>(V.rows());
+  const int nf = static_cast<int>(F.rows());
+  const int ne = static_cast<int>(proxy.n_edges());
+
+  // Area-weighted vertex normals.
+  graph.normals = Eigen::MatrixX3d::Zero(nv, 3);
+  for (int f = 0; f < nf; ++f) {
+    const V3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const V3 n = (b - a).cross(c - a);
+    for (int k = 0; k < 3; ++k) graph.normals.row(F(f, k)) += n;
+  }
+  for (int v = 0; v < nv; ++v) {
+    const double len = graph.normals.row(v).norm();
+    if (len > 0) graph.normals.row(v) /= len;
+  }
+
+  // Edges, dual graph, and the edge-size factor c_e.
+  graph.edges.resize(ne);
+  std::vector<double> sizes(ne, 0.0);
+  double mean_edge_length = 0.0;
+  for (auto e : proxy.edges()) {
+    const auto h0 = proxy.halfedge_handle(e, 0);
+    const int a = proxy.from_vertex_handle(h0).idx(), b = proxy.to_vertex_handle(h0).idx();
+    graph.edges[e.idx()] = {a, b};
+    const V3 pa = V.row(a), pb = V.row(b);
+    mean_edge_length += (pa - pb).norm();
+    sizes[e.idx()] = edge_size(proxy, e);
+  }
+  mean_edge_length /= std::max(1, ne);
+
+  DualGraph dual;
+  dual.neighbor.assign(3 * nf, -1);
+  dual.edge.assign(3 * nf, -1);
+  dual.centroids.resize(nf, 3);
+  for (auto f : proxy.faces()) {
+    int i = 0;
+    for (auto h : proxy.fh_range(f)) {
+      const auto opposite = proxy.opposite_halfedge_handle(h);
+      const auto g = proxy.face_handle(opposite);
+      dual.neighbor[3 * f.idx() + i] = g.is_valid() ? g.idx() : -1;
+      dual.edge[3 * f.idx() + i] = proxy.edge_handle(h).idx();
+      ++i;
+    }
+    dual.centroids.row(f.idx()) = (V.row(F(f.idx(), 0)) + V.row(F(f.idx(), 1)) + V.row(F(f.idx(), 2))) / 3.0;
+  }
+
+  // Trace every stroke (in fixed chunks, so the result does not depend on the thread count).
+  const ClosestFaceTree tree(V, F);
+  std::vector<const Stroke*> strokes;
+  for (const auto& s : sketch.strokes)
+    if (!s.ignored && s.points.size() >= 2) strokes.push_back(&s);
+  std::vector<std::vector<Attachment>> attached(strokes.size());
+  std::vector<std::size_t> skipped(strokes.size(), 0);
+  const double max_len = options.max_segment * mean_edge_length;
+  const std::size_t chunks = std::min<std::size_t>(strokes.size(), 64);
+  parallel_for(0, chunks, options.threads, [&](std::size_t c) {
+    PathSearch search(nf);
+    std::vector<int> crossed;
+    for (std::size_t s = strokes.size() * c / chunks; s < strokes.size() * (c + 1) / chunks; ++s) {
+      // Split long segments so that each traced path stays close to the stroke.
+      std::vector<V3> pts;
+      const auto& sp = strokes[s]->points;
+      pts.push_back(sp[0]);
+      for (std::size_t i = 1; i < sp.size(); ++i) {
+        const double len = (sp[i] - sp[i - 1]).norm();
+        const int pieces = std::max(1, static_cast<int>(std::ceil(len / max_len)));
+        for (int k = 1; k <= pieces; ++k)
+          pts.push_back(sp[i - 1] + (sp[i] - sp[i - 1]) * (static_cast<double>(k) / pieces));
+      }
+      std::vector<int> faces(pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i) faces[i] = tree.closest_face(pts[i]);
+      for (std::size_t i = 1; i < pts.size(); ++i) {
+        if (faces[i] == faces[i - 1]) continue;
+        if (!search.trace(dual, faces[i - 1], faces[i], options.max_path_faces, crossed)) {
+          ++skipped[s];
+          continue;
+        }
+        const int n = static_cast<int>(crossed.size());
+        for (int k = 0; k < n; ++k)
+          attached[s].push_back({crossed[k], pts[i - 1] + (pts[i] - pts[i - 1]) * ((k + 0.5) / n)});
+      }
+    }
+  });
+
+  // Samples per edge, in stroke order.
+  std::vector<int> edge_offsets(ne + 1, 0);
+  std::size_t total = 0;
+  for (std::size_t s = 0; s < strokes.size(); ++s) {
+    for (const auto& a : attached[s]) ++edge_offsets[a.edge + 1];
+    total += attached[s].size();
+    graph.skipped_segments += skipped[s];
+  }
+  graph.crossings = total;
+  for (int e = 0; e < ne; ++e) edge_offsets[e + 1] += edge_offsets[e];
+  std::vector<V3> samples(total);
+  {
+    std::vector<int> fill(edge_offsets.begin(), edge_offsets.end() - 1);
+    for (const auto& list : attached)
+      for (const auto& a : list) samples[fill[a.edge]++] = a.sample;
+  }
+
+  // P_v: for every edge of v's 1-ring, the sample on that edge closest to v.
+  std::vector<std::vector<int>> per_vertex(nv);
+  std::vector<int> new_index(total, -1);
+  std::vector<V3> kept;
+  graph.crossed.assign(ne, 0);
+  for (int e = 0; e < ne; ++e) {
+    if (edge_offsets[e] == edge_offsets[e + 1]) continue;
+    graph.crossed[e] = 1;
+    for (int end : graph.edges[e]) {
+      const V3 pv = V.row(end);
+      int best = -1;
+      double best_d = kInf;
+      for (int k = edge_offsets[e]; k < edge_offsets[e + 1]; ++k) {
+        const double d = (samples[k] - pv).squaredNorm();
+        if (d < best_d) {
+          best_d = d;
+          best = k;
+        }
+      }
+      if (new_index[best] < 0) {
+        new_index[best] = static_cast<int>(kept.size());
+        kept.push_back(samples[best]);
+      }
+      per_vertex[end].push_back(new_index[best]);
+    }
+  }
+  graph.points.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) graph.points.row(static_cast<Eigen::Index>(i)) = kept[i];
+  graph.point_offsets.assign(nv + 1, 0);
+  for (int v = 0; v < nv; ++v) graph.point_offsets[v + 1] = graph.point_offsets[v] + static_cast<int>(per_vertex[v].size());
+  graph.point_indices.reserve(graph.point_offsets[nv]);
+  for (int v = 0; v < nv; ++v)
+    graph.point_indices.insert(graph.point_indices.end(), per_vertex[v].begin(), per_vertex[v].end());
+
+  // Smoothness weights (§4.1), scaled by the relative edge size (App. C).
+  double mean_size = 0.0;
+  for (double c : sizes) mean_size += c;
+  mean_size /= std::max(1, ne);
+  graph.edge_size_reference = options.scale_by_edge_size && mean_size > 0 ? mean_size : 1.0;
+  graph.weights.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const double base = graph.crossed[e] ? options.crossed_weight : options.uncrossed_weight;
+    graph.weights[e] = options.scale_by_edge_size && mean_size > 0 ? base * sizes[e] / mean_size : base;
+  }
+  return graph;
+}
+
+}  // namespace sketchsurf

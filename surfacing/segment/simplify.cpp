@@ -1,0 +1,124 @@
+#include "surfacing/segment/simplify.h"
+
+#include <queue>
+
+
+#include "surfacing/error.h"
+
+namespace sketchsurf {
+
+namespace {
+
+// Valence of the vertex left when halfedge h (v0 -> v1) collapses: the two merge, losing the
+// edge between them and one duplicate per adjacent triangle.
+int merged_valence(const TriMesh& mesh, TriMesh::HalfedgeHandle h) {
+  return static_cast<int>(mesh.valence(mesh.from_vertex_handle(h)) +
+                          mesh.valence(mesh.to_vertex_handle(h))) - 4;
+}
+
+}  // namespace
+
+bool SimplifyOptions::valid(std::string* why) const {
+  if (max_valence < 3) {
+    if (why) *why = "simplification max_valence must be at least 3";
+    return false;
+  }
+  return true;
+}
+
+std::vector<int> SimplifiedGraph::propagate(const std::vector<int>& coarse_labels) const {
+  std::vector<int> labels(fine_to_coarse.size());
+  for (std::size_t v = 0; v < labels.size(); ++v) labels[v] = coarse_labels[fine_to_coarse[v]];
+  return labels;
+}
+
+SimplifiedGraph identity_graph(const StrokeGraph& graph) {
+  SimplifiedGraph s;
+  s.vertex_count = graph.vertex_count();
+  s.fine_to_coarse.resize(s.vertex_count);
+  for (int v = 0; v < s.vertex_count; ++v) s.fine_to_coarse[v] = v;
+  s.coarse_to_fine = s.fine_to_coarse;
+  s.edges = graph.edges;
+  s.weights = graph.weights;
+  return s;
+}
+
+SimplifiedGraph simplify_graph(const TriMesh& proxy_in, const StrokeGraph& graph,
+                               const AssociationOptions& association,
+                               const SimplifyOptions& options) {
+  std::string why;
+  if (!options.valid(&why)) throw Error::usage(why);
+  TriMesh mesh = proxy_in;
+  mesh.garbage_collection();
+  const int nv = static_cast<int>(mesh.n_vertices());
+  if (nv != graph.vertex_count() || mesh.n_edges() != graph.edges.size())
+    throw Error::usage("simplify_graph: the stroke graph was not built from this proxy");
+
+  auto movable = [&](TriMesh::VertexHandle v) {
+    return graph.point_offsets[v.idx()] == graph.point_offsets[v.idx() + 1] && !mesh.is_boundary(v);
+  };
+  auto candidate = [&](TriMesh::HalfedgeHandle h) {
+    return !mesh.status(mesh.edge_handle(h)).deleted() && movable(mesh.from_vertex_handle(h)) &&
+           movable(mesh.to_vertex_handle(h)) && merged_valence(mesh, h) <= options.max_valence;
+  };
+
+  using Entry = std::pair<int, int>;  // resulting valence, halfedge index
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (auto h : mesh.halfedges())
+    if (candidate(h)) queue.emplace(merged_valence(mesh, h), h.idx());
+
+  std::vector<int> parent(nv);
+  for (int v = 0; v < nv; ++v) parent[v] = v;
+  SimplifiedGraph s;
+  while (!queue.empty()) {
+    const auto [valence, index] = queue.top();
+    queue.pop();
+    const auto h = mesh.halfedge_handle(index);
+    if (!candidate(h)) continue;
+    const int now = merged_valence(mesh, h);
+    if (now != valence) {
+      queue.emplace(now, index);
+      continue;
+    }
+    if (!mesh.is_collapse_ok(h)) continue;
+    const auto v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
+    mesh.collapse(h);
+    parent[v0.idx()] = v1.idx();
+    ++s.collapses;
+    for (auto out : mesh.voh_range(v1)) {
+      for (auto hh : {out, mesh.opposite_halfedge_handle(out)})
+        if (candidate(hh)) queue.emplace(merged_valence(mesh, hh), hh.idx());
+    }
+  }
+
+  // Coarse vertices: the survivors, in proxy order.
+  std::vector<int> coarse_index(nv, -1);
+  for (int v = 0; v < nv; ++v)
+    if (parent[v] == v) {
+      coarse_index[v] = s.vertex_count++;
+      s.coarse_to_fine.push_back(v);
+    }
+  s.fine_to_coarse.resize(nv);
+  for (int v = 0; v < nv; ++v) {
+    int r = v;
+    while (parent[r] != r) r = parent[r];
+    s.fine_to_coarse[v] = coarse_index[r];
+  }
+
+  // Coarse edges with weights from the coarse geometry (App. C: w_e c_e).
+  for (auto e : mesh.edges()) {
+    if (mesh.status(e).deleted()) continue;
+    const auto h0 = mesh.halfedge_handle(e, 0);
+    const int a = mesh.from_vertex_handle(h0).idx(), b = mesh.to_vertex_handle(h0).idx();
+    // Edges between two vertices with stroke points are untouched proxy edges; only those can be
+    // crossed, so the proxy's flag of this edge index still applies.
+    const bool crossed = graph.crossed[e.idx()] != 0;
+    double weight = crossed ? association.crossed_weight : association.uncrossed_weight;
+    if (association.scale_by_edge_size) weight *= edge_size(mesh, e) / graph.edge_size_reference;
+    s.edges.push_back({coarse_index[a], coarse_index[b]});
+    s.weights.push_back(weight);
+  }
+  return s;
+}
+
+}  // namespace sketchsurf
