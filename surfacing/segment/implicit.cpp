@@ -1,0 +1,203 @@
+#include "surfacing/segment/implicit.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "surfacing/error.h"
+
+namespace sketchsurf {
+namespace {
+
+constexpr MonomialExponents kMonomials = implicit_monomials();
+
+// Relative floor on a column's standard deviation (times r^degree, see fit_implicit's comment).
+constexpr double kDeviationFloor = 1e-3;
+
+bool all_finite(const Eigen::Ref<const Eigen::MatrixX3d>& m) { return m.allFinite(); }
+
+// Powers y_i^e, e = 0..degree, of the three normalised coordinates.
+struct Powers {
+  double p[3][kMaxImplicitDegree + 1];
+  Powers(const Eigen::Vector3d& y, int degree) {
+    for (int i = 0; i < 3; ++i) {
+      p[i][0] = 1.0;
+      for (int e = 1; e <= degree; ++e) p[i][e] = p[i][e - 1] * y[i];
+    }
+  }
+  double monomial(int k) const {
+    const auto& m = kMonomials[k];
+    return p[0][m[0]] * p[1][m[1]] * p[2][m[2]];
+  }
+  // n . grad_y m_k(y).
+  double directional(int k, const Eigen::Vector3d& n) const {
+    const auto& m = kMonomials[k];
+    double d = 0.0;
+    if (m[0] > 0) d += n[0] * m[0] * p[0][m[0] - 1] * p[1][m[1]] * p[2][m[2]];
+    if (m[1] > 0) d += n[1] * m[1] * p[0][m[0]] * p[1][m[1] - 1] * p[2][m[2]];
+    if (m[2] > 0) d += n[2] * m[2] * p[0][m[0]] * p[1][m[1]] * p[2][m[2] - 1];
+    return d;
+  }
+};
+
+int monomial_degree(int k) { return kMonomials[k][0] + kMonomials[k][1] + kMonomials[k][2]; }
+
+}  // namespace
+
+int monomial_count(int degree) {
+  if (degree < 0 || degree > kMaxImplicitDegree)
+    throw Error::usage("implicit model degree must be in 0..4, got " + std::to_string(degree));
+  return (degree + 1) * (degree + 2) * (degree + 3) / 6;
+}
+
+int ImplicitModel::dimension() const { return static_cast<int>(coefficients.size()); }
+
+double ImplicitModel::value(const Eigen::Vector3d& x) const { return evaluate(x.data()); }
+
+Eigen::Vector3d ImplicitModel::gradient(const Eigen::Vector3d& x) const {
+  Eigen::Vector3d g;
+  evaluate_gradient(x.data(), g.data());
+  return g;
+}
+
+double ImplicitModel::distance(const Eigen::Vector3d& x) const {
+  const double f = std::abs(value(x));
+  if (f == 0.0) return 0.0;
+  const double g = gradient(x).norm();
+  if (g == 0.0) return std::numeric_limits<double>::infinity();
+  return f / g;
+}
+
+bool FitOptions::valid(std::string* why) const {
+  auto fail = [&](const char* what) {
+    if (why) *why = what;
+    return false;
+  };
+  if (!(std::isfinite(mu) && mu >= 0.0)) return fail("mu must be finite and >= 0");
+  if (!(std::isfinite(lambda) && lambda >= 0.0)) return fail("lambda must be finite and >= 0");
+  if (!(std::isfinite(length_unit) && length_unit >= 0.0))
+    return fail("length_unit must be finite and >= 0 (0 = the data's bounding-box diagonal)");
+  return true;
+}
+
+ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points,
+                           Eigen::Ref<const Eigen::MatrixX3d> normal_points,
+                           Eigen::Ref<const Eigen::MatrixX3d> normals, const FitOptions& options) {
+  if (degree < 1 || degree > kMaxImplicitDegree)
+    throw Error::usage("fit_implicit: degree must be in 1..4, got " + std::to_string(degree));
+  std::string why;
+  if (!options.valid(&why)) throw Error::usage("fit_implicit: invalid options: " + why);
+  if (normal_points.rows() != normals.rows())
+    throw Error::usage("fit_implicit: " + std::to_string(normal_points.rows()) +
+                       " normal points but " + std::to_string(normals.rows()) + " normals");
+  if (points.rows() == 0) throw Error::processing("fit_implicit: no stroke points to fit");
+  if (!all_finite(points) || !all_finite(normal_points) || !all_finite(normals))
+    throw Error::processing("fit_implicit: non-finite point or normal coordinates");
+
+  const Eigen::Index np = points.rows(), nn = normal_points.rows();
+  const int t = monomial_count(degree);
+  const int u = t - 1;  // unknowns: the non-constant normalised columns
+
+  ImplicitModel model;
+  model.degree = degree;
+  model.center = points.colwise().mean().transpose();
+  if (options.length_unit > 0.0) {
+    model.scale = options.length_unit;
+  } else {
+    Eigen::Vector3d lo = points.colwise().minCoeff().transpose();
+    Eigen::Vector3d hi = points.colwise().maxCoeff().transpose();
+    if (nn > 0) {
+      lo = lo.cwiseMin(normal_points.colwise().minCoeff().transpose());
+      hi = hi.cwiseMax(normal_points.colwise().maxCoeff().transpose());
+    }
+    const double diagonal = (hi - lo).norm();
+    model.scale = diagonal > 0.0 ? diagonal : 1.0;
+  }
+  const auto normalised = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d {
+    return (x - model.center) / model.scale;
+  };
+
+  // Monomial columns over the stroke points, their means and standard deviations (App. B).
+  Eigen::MatrixXd columns(np, u);
+  double radius2 = 0.0;
+  for (Eigen::Index i = 0; i < np; ++i) {
+    const Eigen::Vector3d y = normalised(points.row(i).transpose());
+    radius2 += y.squaredNorm();
+    const Powers powers(y, degree);
+    for (int k = 1; k < t; ++k) columns(i, k - 1) = powers.monomial(k);
+  }
+  std::vector<Powers> normal_powers;
+  normal_powers.reserve(nn);
+  for (Eigen::Index i = 0; i < nn; ++i) {
+    const Eigen::Vector3d y = normalised(normal_points.row(i).transpose());
+    radius2 += y.squaredNorm();
+    normal_powers.emplace_back(y, degree);
+  }
+  double radius = std::sqrt(radius2 / static_cast<double>(np + nn));
+  if (!(radius > 0.0)) radius = 1.0;
+
+  const Eigen::RowVectorXd means = columns.colwise().mean();
+  columns.rowwise() -= means;
+  Eigen::RowVectorXd deviations =
+      (columns.colwise().squaredNorm() / static_cast<double>(np)).cwiseSqrt();
+  for (int k = 1; k < t; ++k)
+    deviations[k - 1] =
+        std::max(deviations[k - 1], kDeviationFloor * std::pow(radius, monomial_degree(k)));
+  columns.array().rowwise() /= deviations.array();
+
+  // Normal equations of Eq. 6 in the normalised basis.
+  Eigen::MatrixXd normal_matrix = Eigen::MatrixXd::Zero(u, u);
+  normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(columns.transpose());
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(u);
+  if (nn > 0 && options.mu > 0.0) {
+    Eigen::MatrixXd align(nn, u);
+    for (Eigen::Index i = 0; i < nn; ++i) {
+      const Eigen::Vector3d n = normals.row(i).transpose();
+      for (int k = 1; k < t; ++k)
+        align(i, k - 1) = normal_powers[i].directional(k, n) / deviations[k - 1];
+    }
+    normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(align.transpose(), options.mu);
+    rhs = options.mu * align.colwise().sum().transpose();
+  }
+  normal_matrix.diagonal().array() += options.lambda;
+  normal_matrix.triangularView<Eigen::StrictlyUpper>() =
+      normal_matrix.triangularView<Eigen::StrictlyLower>().transpose();
+
+  Eigen::VectorXd theta;
+  if (rhs.squaredNorm() > 0.0 && options.lambda > 0.0) {
+    theta = normal_matrix.llt().solve(rhs);  // symmetric positive definite thanks to lambda
+  } else if (rhs.squaredNorm() > 0.0) {
+    // lambda = 0: the matrix may be singular; take the minimum-norm solution (the limit of
+    // lambda -> 0+).
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(normal_matrix);
+    const Eigen::VectorXd& ev = eig.eigenvalues();
+    const double cutoff = 1e-12 * std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
+    Eigen::VectorXd projected = eig.eigenvectors().transpose() * rhs;
+    for (int k = 0; k < u; ++k) projected[k] = ev[k] > cutoff ? projected[k] / ev[k] : 0.0;
+    theta = eig.eigenvectors() * projected;
+  } else {
+    // No alignment data: the smallest eigenvector (classical algebraic fit with |theta| = 1).
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(normal_matrix);
+    theta = eig.eigenvectors().col(0);
+    // Deterministic sign: the largest-magnitude coefficient is positive.
+    Eigen::Index largest = 0;
+    theta.cwiseAbs().maxCoeff(&largest);
+    if (theta[largest] < 0.0) theta = -theta;
+  }
+
+  // Fold the column normalisation back: f(y) = sum_k theta_k (m_k(y) - mean_k) / dev_k.
+  model.coefficients.resize(t);
+  model.coefficients[0] = 0.0;
+  for (int k = 1; k < t; ++k) {
+    model.coefficients[k] = theta[k - 1] / deviations[k - 1];
+    model.coefficients[0] -= model.coefficients[k] * means[k - 1];
+  }
+  return model;
+}
+
+}  // namespace sketchsurf
