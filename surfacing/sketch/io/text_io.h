@@ -1,0 +1,53 @@
+#pragma once
+// Helpers shared by the text readers and writers of sketch/io (not part of the public API):
+// whole-file reading, line splitting with line numbers, strict number parsing, and shortest
+// round-trip number printing.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sketchsurf::io_detail {
+
+/// The bytes of `file`. Throws Error (Input) naming the file when it cannot be opened or read.
+std::string read_file(const std::filesystem::path& file);
+
+/// Iterates over the lines of a text, counting them from 1. A line loses its line ending (LF or
+/// CRLF) and its trailing whitespace, so "v 3 \r\n" gives "v 3".
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text) : text_(text) {}
+  /// The next line, or false at the end of the text.
+  bool next(std::string_view& line);
+  /// Number of the line last returned by next() (1-based).
+  std::size_t line_number() const { return line_; }
+  /// Bytes not yet consumed.
+  std::size_t bytes_left() const { return text_.size() - pos_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t line_ = 0;
+};
+
+/// Splits a line at spaces and tabs, dropping empty tokens.
+void split_tokens(std::string_view line, std::vector<std::string_view>& tokens);
+
+/// Parses a whole token as a finite double (an optional leading '+' is accepted); nullopt when the
+/// token is not a number, has trailing characters or is NaN/Inf.
+std::optional<double> parse_double(std::string_view token);
+/// Parses a whole token as a finite float, correctly rounded from the decimal text.
+std::optional<float> parse_float(std::string_view token);
+/// Parses a whole token as a signed integer (an optional leading '+' is accepted).
+std::optional<std::int64_t> parse_int(std::string_view token);
+
+/// Appends the shortest decimal text that reads back as exactly `value` (finite values only).
+/// Negative zero is printed as "-0.0" so that JSON readers keep its sign.
+void append_number(std::string& out, double value);
+/// Same for a float: reading the text back as a float gives the same bits.
+void append_number(std::string& out, float value);
+
+}  // namespace sketchsurf::io_detail
