@@ -1,0 +1,413 @@
+#include "surfacing/proxy/vipss.h"
+
+#include <ceres/first_order_function.h>
+#include <ceres/gradient_problem.h>
+#include <ceres/gradient_problem_solver.h>
+#include <ceres/iteration_callback.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+#include <Spectra/SymEigsSolver.h>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <utility>
+#include <vector>
+
+#include "surfacing/error.h"
+#include "surfacing/parallel.h"
+
+namespace sketchsurf {
+
+namespace {
+
+using Mat = Eigen::MatrixXd;
+using Vec = Eigen::VectorXd;
+using Eigen::Index;
+
+// Tile size of the dense kernels. Work is split into tiles of this fixed size, never by thread
+// count, so every floating-point sum is done in the same order whatever the number of threads.
+constexpr Index kTile = 128;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Index tiles(Index size) { return (size + kTile - 1) / kTile; }
+
+// The lower tiles (i >= j) of a t x t tiling, as (i, j) pairs.
+std::vector<std::pair<Index, Index>> lower_tiles(Index t) {
+  std::vector<std::pair<Index, Index>> out;
+  out.reserve(t * (t + 1) / 2);
+  for (Index i = 0; i < t; ++i)
+    for (Index j = 0; j <= i; ++j) out.emplace_back(i, j);
+  return out;
+}
+
+// In-place lower Cholesky factorisation A = L L^T, right-looking and blocked, with the panel solve
+// and the trailing update run tile by tile in parallel. Reads and writes the lower triangle only.
+// Returns false when A is not (numerically) positive definite.
+bool blocked_cholesky(Mat& A, unsigned threads, const Progress& progress, std::string_view stage) {
+  const Index m = A.rows();
+  for (Index k = 0; k < m; k += kTile) {
+    progress.update(stage, static_cast<double>(k) / m);
+    const Index kb = std::min(kTile, m - k);
+    Eigen::Ref<Mat> akk = A.block(k, k, kb, kb);
+    Eigen::LLT<Eigen::Ref<Mat>> llt(akk);
+    if (llt.info() != Eigen::Success) return false;
+    const Index start = k + kb, rest = m - start;
+    if (rest == 0) break;
+    const Index t = tiles(rest);
+    parallel_for(0, t, threads, [&](std::size_t i) {
+      const Index r0 = start + static_cast<Index>(i) * kTile, rb = std::min(kTile, m - r0);
+      auto panel = A.block(r0, k, rb, kb);
+      akk.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(panel);
+    });
+    const auto pairs = lower_tiles(t);
+    parallel_for(0, pairs.size(), threads, [&](std::size_t p) {
+      const Index r0 = start + pairs[p].first * kTile, c0 = start + pairs[p].second * kTile;
+      const Index rb = std::min(kTile, m - r0), cb = std::min(kTile, m - c0);
+      A.block(r0, c0, rb, cb).noalias() -= A.block(r0, k, rb, kb) * A.block(c0, k, cb, kb).transpose();
+    });
+  }
+  progress.update(stage, 1.0);
+  return true;
+}
+
+// X <- L^-1 X for lower-triangular L, column tiles in parallel.
+void lower_solve_columns(const Mat& L, Mat& X, unsigned threads) {
+  parallel_for(0, tiles(X.cols()), threads, [&](std::size_t i) {
+    const Index c0 = static_cast<Index>(i) * kTile, cb = std::min(kTile, X.cols() - c0);
+    auto block = X.middleCols(c0, cb);
+    L.triangularView<Eigen::Lower>().solveInPlace(block);
+  });
+}
+
+// x <- (L L^T)^-1 x with the factor in the lower triangle of L.
+void cholesky_solve(const Mat& L, Vec& x) {
+  L.triangularView<Eigen::Lower>().solveInPlace(x);
+  L.triangularView<Eigen::Lower>().transpose().solveInPlace(x);
+}
+
+// y = S x for a symmetric S stored in full, column tiles in parallel (Spectra's operator concept).
+class ParallelSymProduct {
+ public:
+  using Scalar = double;
+  ParallelSymProduct(const Mat& s, unsigned threads) : s_(s), threads_(threads) {}
+  Index rows() const { return s_.rows(); }
+  Index cols() const { return s_.cols(); }
+  void perform_op(const double* x_in, double* y_out) const {
+    Eigen::Map<const Vec> x(x_in, s_.rows());
+    Eigen::Map<Vec> y(y_out, s_.rows());
+    parallel_for(0, tiles(s_.cols()), threads_, [&](std::size_t i) {
+      const Index c0 = static_cast<Index>(i) * kTile, cb = std::min(kTile, s_.cols() - c0);
+      y.segment(c0, cb).noalias() = s_.middleCols(c0, cb).transpose() * x;
+    });
+  }
+
+ private:
+  const Mat& s_;
+  unsigned threads_;
+};
+
+// Unit normals from spherical angles (theta_i, phi_i) stacked in `angles` (2n).
+void normals_from_angles(const double* angles, Index n, Vec& g) {
+  for (Index i = 0; i < n; ++i) {
+    const double t = angles[2 * i], p = angles[2 * i + 1];
+    g.segment<3>(3 * i) << std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t);
+  }
+}
+
+// E(angles) = g^T H g with H = S^-1 applied through the Cholesky factor of S.
+class NormalEnergy : public ceres::FirstOrderFunction {
+ public:
+  explicit NormalEnergy(const Mat& factor) : factor_(factor) {}
+  int NumParameters() const override { return static_cast<int>(2 * (factor_.rows() / 3)); }
+  bool Evaluate(const double* angles, double* cost, double* gradient) const override {
+    const Index n = factor_.rows() / 3;
+    Vec g(3 * n);
+    normals_from_angles(angles, n, g);
+    Vec h = g;
+    cholesky_solve(factor_, h);
+    *cost = g.dot(h);
+    if (gradient) {
+      for (Index i = 0; i < n; ++i) {
+        const double t = angles[2 * i], p = angles[2 * i + 1];
+        const Eigen::Vector3d dh = 2.0 * h.segment<3>(3 * i);
+        gradient[2 * i] = dh.dot(Eigen::Vector3d(std::cos(t) * std::cos(p),
+                                                 std::cos(t) * std::sin(p), -std::sin(t)));
+        gradient[2 * i + 1] =
+            dh.dot(Eigen::Vector3d(-std::sin(t) * std::sin(p), std::sin(t) * std::cos(p), 0.0));
+      }
+    }
+    return true;
+  }
+
+ private:
+  const Mat& factor_;
+};
+
+// Reports L-BFGS progress; turns a cancel request into a clean abort.
+class LbfgsProgress : public ceres::IterationCallback {
+ public:
+  LbfgsProgress(const Progress& progress, int max_iterations)
+      : progress_(progress), max_iterations_(max_iterations) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    try {
+      progress_.update("vipss: optimising normals",
+                       std::min(1.0, static_cast<double>(s.iteration) / max_iterations_));
+    } catch (...) {
+      error = std::current_exception();
+      return ceres::SOLVER_ABORT;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+  std::exception_ptr error;
+
+ private:
+  const Progress& progress_;
+  int max_iterations_;
+};
+
+// Kernel matrix blocks of the r^3 Hermite RBF (METHOD.md section 1):
+//   Pv(i, j)        = r^3 (+ lambda on the diagonal)             value-value
+//   Gvg(i, 3j + l)  = d/dy_l |x_i - y|^3 at x_j = 3 r (x_j - x_i)_l  value-gradient
+//   Ggg(3i+k, 3j+l) = -Hessian = -3 (d_k d_l / r + r delta_kl), d = x_i - x_j (0 for i = j)
+void assemble(const Eigen::MatrixX3d& x, double lambda, Mat& pv, Mat& gvg, Mat& ggg,
+              unsigned threads) {
+  const Index n = x.rows();
+  pv.resize(n, n);
+  gvg.resize(n, 3 * n);
+  ggg.resize(3 * n, 3 * n);
+  parallel_for(0, n, threads, [&](std::size_t jj) {
+    const Index j = static_cast<Index>(jj);
+    for (Index i = 0; i < n; ++i) {
+      const Eigen::Vector3d d = (x.row(i) - x.row(j)).transpose();
+      const double r = d.norm();
+      pv(i, j) = r * r * r + (i == j ? lambda : 0.0);
+      gvg.block<1, 3>(i, 3 * j) = -3.0 * r * d.transpose();
+      Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+      if (r > 1e-12) h = -3.0 * (d * d.transpose() / r + r * Eigen::Matrix3d::Identity());
+      ggg.block<3, 3>(3 * i, 3 * j) = h;
+    }
+  });
+}
+
+}  // namespace
+
+bool VipssOptions::valid(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!(lambda >= 0.0) || !std::isfinite(lambda)) return fail("vipss lambda must be >= 0");
+  if (max_iterations < 0) return fail("vipss max_iterations must be >= 0");
+  if (!(function_tolerance > 0.0)) return fail("vipss function_tolerance must be > 0");
+  if (!(gradient_tolerance > 0.0)) return fail("vipss gradient_tolerance must be > 0");
+  return true;
+}
+
+HermiteRbf::HermiteRbf(const Eigen::MatrixX3d& centers, const Eigen::VectorXd& a,
+                       const Eigen::MatrixX3d& b, const Eigen::Vector4d& c)
+    : cx_(centers.col(0)), cy_(centers.col(1)), cz_(centers.col(2)), a_(a), bx_(b.col(0)),
+      by_(b.col(1)), bz_(b.col(2)), c_(c) {}
+
+double HermiteRbf::value(const Eigen::Vector3d& x) const {
+  // f = sum a r^3 + 3 r b . (x_j - x) + c0 + c . x
+  const Eigen::ArrayXd dx = cx_ - x.x(), dy = cy_ - x.y(), dz = cz_ - x.z();
+  const Eigen::ArrayXd r = (dx.square() + dy.square() + dz.square()).sqrt();
+  return (r * (a_ * r.square() + 3.0 * (bx_ * dx + by_ * dy + bz_ * dz))).sum() + c_[0] +
+         c_.tail<3>().dot(x);
+}
+
+double HermiteRbf::value_gradient(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const {
+  // With e = x_j - x: grad (a r^3) = -3 a r e; grad (3 r b.e) = -3 (b.e) e / r - 3 r b.
+  const Eigen::ArrayXd dx = cx_ - x.x(), dy = cy_ - x.y(), dz = cz_ - x.z();
+  const Eigen::ArrayXd r = (dx.square() + dy.square() + dz.square()).sqrt();
+  const Eigen::ArrayXd be = bx_ * dx + by_ * dy + bz_ * dz;
+  const double f = (r * (a_ * r.square() + 3.0 * be)).sum() + c_[0] + c_.tail<3>().dot(x);
+  if (gradient) {
+    const Eigen::ArrayXd s = -3.0 * (a_ * r + (r > 1e-12).select(be / r, 0.0));
+    *gradient << (s * dx - 3.0 * r * bx_).sum(), (s * dy - 3.0 * r * by_).sum(),
+        (s * dz - 3.0 * r * bz_).sum();
+    *gradient += c_.tail<3>();
+  }
+  return f;
+}
+
+void HermiteRbf::values(const Eigen::MatrixX3d& points, Eigen::VectorXd& out,
+                        unsigned threads) const {
+  out.resize(points.rows());
+  constexpr std::size_t kChunk = 64;
+  const std::size_t rows = static_cast<std::size_t>(points.rows());
+  parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t c) {
+    for (std::size_t i = c * kChunk; i < std::min(rows, (c + 1) * kChunk); ++i)
+      out[i] = value(points.row(i).transpose());
+  });
+}
+
+VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
+                        const Progress& progress) {
+  std::string why;
+  if (!options.valid(&why)) throw Error::usage(why);
+  const Index n = x.rows();
+  if (n < 5) throw Error::processing("VIPSS needs at least 5 points, got " + std::to_string(n));
+  if (!x.allFinite()) throw Error::processing("VIPSS points contain NaN or Inf");
+  const unsigned threads = options.threads;
+  VipssResult result;
+  result.summary.points = static_cast<std::size_t>(n);
+  auto t0 = std::chrono::steady_clock::now();
+
+  // Polynomial block: N_v = [1 x] (n x 4); its QR gives Y (range) and Z (null space of N_v^T).
+  progress.update("vipss: assembling", 0.0);
+  Mat nv(n, 4);
+  nv.col(0).setOnes();
+  nv.rightCols<3>() = x;
+  const Eigen::HouseholderQR<Mat> qr(nv);
+  const Eigen::Matrix4d r = qr.matrixQR().topRows<4>().triangularView<Eigen::Upper>();
+  const double scale = std::max(1.0, x.cwiseAbs().maxCoeff()) * std::sqrt(static_cast<double>(n));
+  if (r.diagonal().cwiseAbs().minCoeff() < 1e-9 * scale)
+    throw Error::processing("VIPSS points are (nearly) coplanar: they do not enclose a volume");
+  const Mat y = qr.householderQ() * Mat::Identity(n, 4);
+
+  Mat pv, gvg, s;
+  assemble(x, options.lambda, pv, gvg, s, threads);
+  progress.update("vipss: assembling", 1.0);
+  result.summary.assemble_seconds = seconds_since(t0);
+
+  // T = Z^T P_v Z, factorised (positive definite: r^3 is conditionally positive definite of
+  // order 2 and the points are not coplanar).
+  t0 = std::chrono::steady_clock::now();
+  Mat t = pv;
+  t.applyOnTheLeft(qr.householderQ().transpose());
+  t.applyOnTheRight(qr.householderQ());
+  Mat tl = t.bottomRightCorner(n - 4, n - 4);
+  t.resize(0, 0);
+  if (!blocked_cholesky(tl, threads, progress, "vipss: factorising"))
+    throw Error::processing("VIPSS value system is not positive definite (duplicate points?)");
+
+  // Schur complement S = H^-1 = G_gg - B^T A_r^-1 B with A_r = [[P_v, N_v], [N_v^T, 0]],
+  // B = [G_vg; N_g^T]. With C = R^-T N_g^T, U = Y^T G_vg, E = G_vg - P_v Y C,
+  // F = L^-1 Z^T E:  S = G_gg - F^T F - U^T C - C^T U + C^T (Y^T P_v Y) C.
+  const Mat pvy = pv * y;
+  Mat ngt = Mat::Zero(4, 3 * n);  // N_g^T: row 0 (constant) is zero, rows 1..3 pick x, y, z
+  for (Index i = 0; i < n; ++i) ngt.block<3, 3>(1, 3 * i).setIdentity();
+  const Mat c = r.transpose().triangularView<Eigen::Lower>().solve(ngt);
+  const Mat u = y.transpose() * gvg;
+  gvg.noalias() -= pvy * c;  // gvg now holds E
+  gvg.applyOnTheLeft(qr.householderQ().transpose());
+  Mat f = gvg.bottomRows(n - 4);
+  gvg.resize(0, 0);
+  lower_solve_columns(tl, f, threads);
+  // Low-rank part as X^T M X with X = [U; C] (8 x 3n), M = [[0, -I], [-I, Y^T P_v Y]].
+  Mat xl(8, 3 * n);
+  xl << u, c;
+  Eigen::Matrix<double, 8, 8> m = Eigen::Matrix<double, 8, 8>::Zero();
+  m.topRightCorner<4, 4>() = -Eigen::Matrix4d::Identity();
+  m.bottomLeftCorner<4, 4>() = -Eigen::Matrix4d::Identity();
+  m.bottomRightCorner<4, 4>() = y.transpose() * pvy;
+  const Mat mx = m * xl;
+  const auto pairs = lower_tiles(tiles(3 * n));
+  parallel_for(0, pairs.size(), threads, [&](std::size_t p) {
+    const Index r0 = pairs[p].first * kTile, c0 = pairs[p].second * kTile;
+    const Index rb = std::min(kTile, 3 * n - r0), cb = std::min(kTile, 3 * n - c0);
+    auto tile = s.block(r0, c0, rb, cb);
+    tile.noalias() -= f.middleCols(r0, rb).transpose() * f.middleCols(c0, cb);
+    tile.noalias() += xl.middleCols(r0, rb).transpose() * mx.middleCols(c0, cb);
+  });
+  f.resize(0, 0);
+  s.triangularView<Eigen::StrictlyUpper>() = s.transpose();
+  result.summary.factor_seconds = seconds_since(t0);
+
+  // Initial normals: the eigenvector of H with the smallest eigenvalue, i.e. of S = H^-1 with the
+  // largest, by Lanczos (Spectra).
+  t0 = std::chrono::steady_clock::now();
+  progress.update("vipss: initial normals", 0.0);
+  Vec v0;
+  {
+    ParallelSymProduct op(s, threads);
+    const Index ncv = std::min<Index>(3 * n, 24);
+    Spectra::SymEigsSolver<ParallelSymProduct> eigs(op, 1, ncv);
+    eigs.init();
+    eigs.compute(Spectra::SortRule::LargestAlge, 3000, 1e-10);
+    result.summary.eigen_matvecs = static_cast<int>(eigs.num_operations());
+    if (eigs.info() != Spectra::CompInfo::Successful)
+      throw Error::processing("VIPSS: the Lanczos iteration for the initial normals did not converge");
+    v0 = eigs.eigenvectors().col(0);
+  }
+  progress.update("vipss: initial normals", 1.0);
+  result.summary.eigen_seconds = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  if (!blocked_cholesky(s, threads, progress, "vipss: factorising H"))
+    throw Error::processing("VIPSS energy matrix is not positive definite");
+  result.summary.factor_seconds += seconds_since(t0);
+
+  // L-BFGS over spherical angles, started from the normalised eigenvector.
+  t0 = std::chrono::steady_clock::now();
+  std::vector<double> angles(2 * n);
+  for (Index i = 0; i < n; ++i) {
+    Eigen::Vector3d g = v0.segment<3>(3 * i);
+    g = g.norm() > 0 ? g.normalized() : Eigen::Vector3d::UnitZ();
+    angles[2 * i] = std::acos(std::clamp(g.z(), -1.0, 1.0));
+    angles[2 * i + 1] = std::atan2(g.y(), g.x());
+  }
+  auto* energy = new NormalEnergy(s);
+  ceres::GradientProblem problem(energy);  // takes ownership
+  energy->Evaluate(angles.data(), &result.summary.initial_energy, nullptr);
+  ceres::GradientProblemSolver::Options solver_options;
+  solver_options.line_search_direction_type = ceres::LBFGS;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.function_tolerance = options.function_tolerance;
+  solver_options.gradient_tolerance = options.gradient_tolerance;
+  solver_options.parameter_tolerance = 1e-14;
+  solver_options.logging_type = ceres::SILENT;
+  LbfgsProgress callback(progress, std::max(1, options.max_iterations));
+  solver_options.callbacks.push_back(&callback);
+  ceres::GradientProblemSolver::Summary summary;
+  ceres::Solve(solver_options, problem, angles.data(), &summary);
+  if (callback.error) std::rethrow_exception(callback.error);
+  result.summary.lbfgs_iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.summary.termination = summary.message;
+  result.summary.optimise_seconds = seconds_since(t0);
+
+  // Coefficients: b = H g; [a; c] = -A_r^-1 [G_vg b; N_g^T b] through the null-space factors.
+  Vec g(3 * n);
+  normals_from_angles(angles.data(), n, g);
+  Vec b = g;
+  cholesky_solve(s, b);
+  result.summary.final_energy = g.dot(b);
+  Vec r1(n);
+  parallel_for(0, n, threads, [&](std::size_t ii) {
+    const Index i = static_cast<Index>(ii);
+    double sum = 0.0;
+    for (Index j = 0; j < n; ++j) {
+      const Eigen::Vector3d e = (x.row(j) - x.row(i)).transpose();
+      sum += 3.0 * e.norm() * e.dot(b.segment<3>(3 * j));
+    }
+    r1[i] = -sum;
+  });
+  const Eigen::Vector4d r2 = -(ngt * b);
+  const Eigen::Vector4d cr = r.transpose().triangularView<Eigen::Lower>().solve(r2);
+  Vec rhs = r1 - pvy * cr;
+  rhs.applyOnTheLeft(qr.householderQ().transpose());
+  Vec w = rhs.tail(n - 4);
+  cholesky_solve(tl, w);
+  Vec zw = Vec::Zero(n);
+  zw.tail(n - 4) = w;
+  zw.applyOnTheLeft(qr.householderQ());
+  const Vec a = y * cr + zw;
+  const Eigen::Vector4d poly =
+      r.triangularView<Eigen::Upper>().solve(y.transpose() * (r1 - pv * a));
+
+  result.normals.resize(n, 3);
+  Eigen::MatrixX3d bm(n, 3);
+  for (Index i = 0; i < n; ++i) {
+    result.normals.row(i) = g.segment<3>(3 * i).transpose();
+    bm.row(i) = b.segment<3>(3 * i).transpose();
+  }
+  result.function = HermiteRbf(x, a, bm, poly);
+  return result;
+}
+
+}  // namespace sketchsurf
