@@ -1,0 +1,29 @@
+// The bundled examples in tests/data are the output of their generators (tests/support/examples.h);
+// regenerate them with `build/tests/make_examples tests/data` when a generator changes.
+#include <gtest/gtest.h>
+
+#include "surfacing/sketch/io/json.h"
+#include "tests/support/examples.h"
+
+namespace sketchsurf::testing {
+namespace {
+
+TEST(BundledExamples, MatchTheirGenerators) {
+  for (const auto& [name, expected] : bundled_examples()) {
+    SCOPED_TRACE(name);
+    const auto file = std::filesystem::path(SKETCHSURF_TESTS_DIR) / "data" / (name + ".json");
+    const Sketch actual = read_json(file);
+    ASSERT_EQ(actual.strokes.size(), expected.strokes.size());
+    for (std::size_t i = 0; i < actual.strokes.size(); ++i) {
+      const Stroke &a = actual.strokes[i], &b = expected.strokes[i];
+      ASSERT_EQ(a.points.size(), b.points.size());
+      for (std::size_t k = 0; k < a.points.size(); ++k) EXPECT_EQ(a.points[k], b.points[k]);
+      EXPECT_EQ(a.boundary, b.boundary);
+      EXPECT_EQ(a.ignored, b.ignored);
+    }
+    EXPECT_EQ(actual.mirror.has_value(), expected.mirror.has_value());
+  }
+}
+
+}  // namespace
+}  // namespace sketchsurf::testing
