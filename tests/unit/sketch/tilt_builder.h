@@ -1,17 +1,24 @@
 #pragma once
 // Hand assembly of .tilt files byte by byte (../shared/docs/tilt-format.md), for the tests of
 // what our writer never produces: Deflate entries, duplicate names, extra header bytes, unknown
-// extension bits, absurd counts and sizes. Also a minimal zip parser to inspect written files.
+// extension bits, absurd counts and sizes. Also a minimal zip parser to inspect written files,
+// and the comparison used by every .tilt round trip.
 
+#include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "surfacing/sketch/sketch.h"
 
 namespace sketchsurf::testing {
 
@@ -214,6 +221,52 @@ inline std::vector<ParsedEntry> parse_zip(const ByteVec& zip) {
     at += 46 + name_len + extra + comment;
   }
   return out;
+}
+
+/// A fresh directory for one test.
+inline std::filesystem::path scratch_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
+                       (std::string("tilt_test_") + info->test_suite_name() + "_" + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+inline ByteVec read_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return ByteVec(std::istreambuf_iterator<char>(in), {});
+}
+
+/// Same rotation, whatever the sign of the quaternion.
+inline double rotation_distance(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  return std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());
+}
+
+/// Positions to 1e-6, orientations to 1e-6, widths relative 1e-6, other attributes exact.
+inline void expect_same_strokes(const Sketch& a, const Sketch& b) {
+  ASSERT_EQ(a.strokes.size(), b.strokes.size());
+  for (std::size_t s = 0; s < a.strokes.size(); ++s) {
+    const Stroke& x = a.strokes[s];
+    const Stroke& y = b.strokes[s];
+    SCOPED_TRACE("stroke " + std::to_string(s));
+    ASSERT_EQ(x.size(), y.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      EXPECT_LT((x.points[i] - y.points[i]).norm(), 1e-6);
+      EXPECT_LT(rotation_distance(x.orientations[i], y.orientations[i]), 1e-6);
+    }
+    EXPECT_EQ(x.pressures, y.pressures);
+    EXPECT_EQ(x.timestamps_ms, y.timestamps_ms);
+    EXPECT_EQ(x.color, y.color);
+    EXPECT_EQ(x.brush, y.brush);
+    EXPECT_EQ(x.layer, y.layer);
+    EXPECT_NEAR(x.width, y.width, 1e-6 * x.width);
+  }
+  ASSERT_EQ(a.mirror.has_value(), b.mirror.has_value());
+  if (a.mirror) {
+    EXPECT_LT((a.mirror->normal - b.mirror->normal).norm(), 1e-6);
+    EXPECT_NEAR(a.mirror->offset, b.mirror->offset, 1e-6);
+  }
 }
 
 }  // namespace sketchsurf::testing

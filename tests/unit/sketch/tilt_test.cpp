@@ -7,9 +7,11 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "surfacing/error.h"
+#include "surfacing/sketch/io/json.h"
 #include "tests/unit/sketch/tilt_builder.h"
 
 namespace sketchsurf {
@@ -22,21 +24,6 @@ constexpr const char* kMarker = "429ed64a-4e97-4466-84d3-145a861ef684";
 constexpr const char* kLight = "2241cd32-8ba2-48a5-9ee7-2caef7e9ed62";
 constexpr const char* kMinimalMetadata =
     R"({"EnvironmentPreset":"ab080599-e465-4a6d-8587-43bf495af68b","BrushIndex":["429ed64a-4e97-4466-84d3-145a861ef684"],"SchemaVersion":2})";
-
-/// A fresh directory for one test.
-fs::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       (std::string("tilt_test_") + info->test_suite_name() + "_" + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-ByteVec read_bytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return ByteVec(std::istreambuf_iterator<char>(in), {});
-}
 
 Error input_error(const ByteVec& bytes) {
   try {
@@ -83,37 +70,6 @@ Sketch attributed_sketch() {
   return sketch;
 }
 
-/// Same rotation, whatever the sign of the quaternion.
-double rotation_distance(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
-  return std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());
-}
-
-/// Positions to 1e-6, orientations to 1e-6, widths relative 1e-6, other attributes exact.
-void expect_same_strokes(const Sketch& a, const Sketch& b) {
-  ASSERT_EQ(a.strokes.size(), b.strokes.size());
-  for (std::size_t s = 0; s < a.strokes.size(); ++s) {
-    const Stroke& x = a.strokes[s];
-    const Stroke& y = b.strokes[s];
-    SCOPED_TRACE("stroke " + std::to_string(s));
-    ASSERT_EQ(x.size(), y.size());
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      EXPECT_LT((x.points[i] - y.points[i]).norm(), 1e-6);
-      EXPECT_LT(rotation_distance(x.orientations[i], y.orientations[i]), 1e-6);
-    }
-    EXPECT_EQ(x.pressures, y.pressures);
-    EXPECT_EQ(x.timestamps_ms, y.timestamps_ms);
-    EXPECT_EQ(x.color, y.color);
-    EXPECT_EQ(x.brush, y.brush);
-    EXPECT_EQ(x.layer, y.layer);
-    EXPECT_NEAR(x.width, y.width, 1e-6 * x.width);
-  }
-  ASSERT_EQ(a.mirror.has_value(), b.mirror.has_value());
-  if (a.mirror) {
-    EXPECT_LT((a.mirror->normal - b.mirror->normal).norm(), 1e-6);
-    EXPECT_NEAR(a.mirror->offset, b.mirror->offset, 1e-6);
-  }
-}
-
 RawPoint raw_point(float x, float y, float z, std::uint32_t time) {
   RawPoint p;
   p.x = x;
@@ -156,6 +112,16 @@ TEST(TiltWriter, RoundTripKeepsEveryAttribute) {
   const ByteVec a = sketch_entry(read_bytes(dir / "a.tilt"));
   EXPECT_FALSE(a.empty());
   EXPECT_EQ(a, sketch_entry(read_bytes(dir / "b.tilt")));
+}
+
+TEST(TiltWriter, RoundTripThroughJson) {
+  // .tilt -> .json -> .tilt -> reader: the same strokes as the first read.
+  const auto dir = scratch_dir();
+  write_tilt(attributed_sketch(), dir / "first.tilt");
+  const Sketch first = read_tilt(dir / "first.tilt");
+  write_json(first, dir / "middle.json");
+  write_tilt(read_json(dir / "middle.json"), dir / "last.tilt");
+  expect_same_strokes(first, read_tilt(dir / "last.tilt"));
 }
 
 TEST(TiltWriter, FollowsWhatOpenBrushNeeds) {
