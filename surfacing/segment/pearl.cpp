@@ -1,0 +1,552 @@
+#include "surfacing/segment/pearl.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <random>
+#include <thread>
+
+#include "surfacing/error.h"
+#include "surfacing/parallel.h"
+#include "surfacing/segment/expansion.h"
+#include "surfacing/segment/spectral.h"
+
+namespace sketchsurf {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using V3 = Eigen::Vector3d;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// splitmix64: independent, well-mixed seeds for restart r and step i from one base seed.
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t salt) {
+  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * (salt + 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+// Taubin distances can be infinite (f != 0 where grad f = 0); cap a point's squared distance at
+// the squared diagonal (1 in normalised units) so graph-cut costs stay finite.
+constexpr double kMaxDistance2 = 1.0;
+
+// A model (normalised coordinates) with its squared distance to every associated point. Immutable
+// once made, shared between restarts.
+struct Candidate {
+  ImplicitModel model;
+  std::vector<double> dist2;  // #P
+};
+using CandidatePtr = std::shared_ptr<const Candidate>;
+
+// Scribble constraint (Eq. 10): the labelled-graph vertices that should take label `label`.
+struct Constraint {
+  std::vector<int> vertices;
+  int label = -1;
+};
+
+// A labeling of the labelled graph and the candidate models its labels index.
+struct RunState {
+  std::vector<CandidatePtr> models;
+  std::vector<int> labels;  // per labelled-graph vertex
+  std::vector<Constraint> constraints;
+};
+
+struct RunResult {
+  RunState state;
+  double energy = 0.0;
+  int iterations = 0;
+  bool converged = false;
+  std::vector<double> history;
+};
+
+}  // namespace
+
+bool SegmentOptions::valid(std::string* why) const {
+  auto fail = [&](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  auto positive = [](double x) { return x > 0 && std::isfinite(x); };
+  auto non_negative = [](double x) { return x >= 0 && std::isfinite(x); };
+  if (!positive(epsilon)) return fail("segment epsilon must be positive");
+  if (!non_negative(w_smooth)) return fail("segment w_smooth must be >= 0");
+  if (!non_negative(w_simp)) return fail("segment w_simp must be >= 0");
+  if (!non_negative(mu)) return fail("segment mu must be >= 0");
+  if (!non_negative(lambda)) return fail("segment lambda must be >= 0");
+  if (!positive(init_boost)) return fail("segment init_boost must be positive");
+  if (cluster_counts.empty()) return fail("segment cluster_counts must not be empty");
+  for (int k : cluster_counts)
+    if (k < 1) return fail("segment cluster_counts must be positive");
+  if (max_degree < 1 || max_degree > kMaxImplicitDegree)
+    return fail("segment max_degree must be in 1..4");
+  if (merges_per_iteration < 0) return fail("segment merges_per_iteration must be >= 0");
+  if (max_iterations < 1) return fail("segment max_iterations must be at least 1");
+  if (restarts < 1) return fail("segment restarts must be at least 1");
+  if (expansion_sweeps < 1) return fail("segment expansion_sweeps must be at least 1");
+  if (!non_negative(penalty_factor)) return fail("segment penalty_factor must be >= 0");
+  std::string sub;
+  if (!association.valid(&sub)) return fail(sub);
+  if (!simplification.valid(&sub)) return fail(sub);
+  return true;
+}
+
+struct Segmenter::Impl {
+  SegmentOptions options;
+  V3 origin = V3::Zero();  // input = origin + unit * normalised
+  double unit = 1.0;
+  StrokeGraph graph;       // normalised
+  SimplifiedGraph coarse;
+  double fidelity_scale = 0.0;  // 1 / (eps^2 N_p)
+  double smooth_scale = 0.0;    // w_smooth / W, W the proxy's total edge weight
+  FitOptions fit;
+  FitOptions boosted_fit;
+  std::vector<CandidatePtr> initial;
+  SegmentationSummary base_summary;
+  std::optional<RunState> current;
+
+  // ---- models ----
+
+  CandidatePtr make_candidate(ImplicitModel model) const {
+    auto c = std::make_shared<Candidate>();
+    c->dist2.resize(graph.points.rows());
+    for (Eigen::Index p = 0; p < graph.points.rows(); ++p) {
+      const double d = model.distance(graph.points.row(p));
+      c->dist2[p] = std::isfinite(d) ? std::min(d * d, kMaxDistance2) : kMaxDistance2;
+    }
+    c->model = std::move(model);
+    return c;
+  }
+
+  // Fits a model of `degree` to the points of the proxy vertices `fine` (Eq. 6): their stroke
+  // points, and the normals of those without stroke points. nullopt without stroke points.
+  std::optional<ImplicitModel> fit_vertices(const std::vector<int>& fine, int degree,
+                                            const FitOptions& fit_options) const {
+    std::vector<char> seen(graph.points.rows(), 0);
+    std::vector<int> points, normal_vertices;
+    for (int v : fine) {
+      const auto pv = graph.points_of(v);
+      if (pv.empty()) normal_vertices.push_back(v);
+      for (int p : pv)
+        if (!seen[p]) seen[p] = 1, points.push_back(p);
+    }
+    if (points.empty()) return std::nullopt;
+    Eigen::MatrixX3d P(points.size(), 3), N(normal_vertices.size(), 3), n(normal_vertices.size(), 3);
+    for (std::size_t i = 0; i < points.size(); ++i) P.row(i) = graph.points.row(points[i]);
+    for (std::size_t i = 0; i < normal_vertices.size(); ++i) {
+      N.row(i) = graph.positions.row(normal_vertices[i]);
+      n.row(i) = graph.normals.row(normal_vertices[i]);
+    }
+    return fit_implicit(degree, P, N, n, fit_options);
+  }
+
+  // Proxy vertices of each label of a labelled-graph labeling.
+  std::vector<std::vector<int>> fine_members(const std::vector<int>& labels, int count) const {
+    std::vector<std::vector<int>> members(count);
+    for (int v = 0; v < graph.vertex_count(); ++v) members[labels[coarse.fine_to_coarse[v]]].push_back(v);
+    return members;
+  }
+
+  // E_fidelity (unscaled) of the labelled-graph vertices `vertices` under a candidate.
+  double fidelity_of(const Candidate& c, const std::vector<int>& coarse_vertices) const {
+    double sum = 0.0;
+    for (int vc : coarse_vertices)
+      for (int p : graph.points_of(coarse.coarse_to_fine[vc])) sum += c.dist2[p];
+    return sum;
+  }
+
+  // ---- the labeling problem ----
+
+  LabelingProblem problem(const RunState& s) const {
+    const int n = coarse.vertex_count, L = static_cast<int>(s.models.size());
+    LabelingProblem pr;
+    pr.data_cost = Eigen::MatrixXd::Zero(n, L);
+    for (int vc = 0; vc < n; ++vc) {
+      const auto pv = graph.points_of(coarse.coarse_to_fine[vc]);
+      if (pv.empty()) continue;
+      for (int a = 0; a < L; ++a) {
+        double sum = 0.0;
+        for (int p : pv) sum += s.models[a]->dist2[p];
+        pr.data_cost(vc, a) = fidelity_scale * sum;
+      }
+    }
+    const double rho = std::pow(options.penalty_factor * options.epsilon, 2);
+    for (const auto& c : s.constraints)
+      for (int vc : c.vertices)
+        for (int a = 0; a < L; ++a)
+          if (a != c.label) pr.data_cost(vc, a) += rho;
+    pr.edges = coarse.edges;
+    pr.edge_weights.resize(coarse.weights.size());
+    for (std::size_t e = 0; e < coarse.weights.size(); ++e)
+      pr.edge_weights[e] = smooth_scale * coarse.weights[e];
+    pr.label_cost.resize(L);
+    for (int a = 0; a < L; ++a)
+      pr.label_cost[a] = options.w_simp * s.models[a]->model.dimension() / 35.0;
+    return pr;
+  }
+
+  // Drops the labels no vertex uses (Algorithm 1 after step (1)), keeping constraints attached.
+  static void drop_unused(RunState& s) {
+    std::vector<int> remap(s.models.size(), -1);
+    std::vector<CandidatePtr> kept;
+    for (int& l : s.labels) {
+      if (remap[l] < 0) {
+        remap[l] = static_cast<int>(kept.size());
+        kept.push_back(s.models[l]);
+      }
+      l = remap[l];
+    }
+    s.models = std::move(kept);
+    std::vector<Constraint> constraints;
+    for (auto& c : s.constraints)
+      if (c.label >= 0 && remap[c.label] >= 0) constraints.push_back({c.vertices, remap[c.label]});
+    s.constraints = std::move(constraints);
+  }
+
+  // Step (2): refit every used model; keep the refit only if it lowers E_fidelity on its
+  // vertices, else add it as a new candidate (§4.2).
+  void refit(RunState& s) const {
+    const int L = static_cast<int>(s.models.size());
+    const auto members = fine_members(s.labels, L);
+    std::vector<std::vector<int>> coarse_members(L);
+    for (int vc = 0; vc < coarse.vertex_count; ++vc) coarse_members[s.labels[vc]].push_back(vc);
+    for (int a = 0; a < L; ++a) {
+      auto model = fit_vertices(members[a], s.models[a]->model.degree, fit);
+      if (!model) continue;
+      CandidatePtr c = make_candidate(std::move(*model));
+      if (fidelity_of(*c, coarse_members[a]) < fidelity_of(*s.models[a], coarse_members[a]))
+        s.models[a] = std::move(c);
+      else
+        s.models.push_back(std::move(c));
+    }
+  }
+
+  // Step (3): lower-degree fits of every used model, and merges of the neighbouring label
+  // pairs separated by the most edge weight (§4.2).
+  void propose(RunState& s, int used) const {
+    const auto members = fine_members(s.labels, used);
+    for (int a = 0; a < used; ++a) {
+      const int d = s.models[a]->model.degree;
+      const int lowest = options.all_lower_degrees ? 1 : d - 1;
+      for (int lower = d - 1; lower >= lowest; --lower)
+        if (auto model = fit_vertices(members[a], lower, fit))
+          s.models.push_back(make_candidate(std::move(*model)));
+    }
+    std::map<std::pair<int, int>, double> between;
+    for (std::size_t e = 0; e < coarse.edges.size(); ++e) {
+      int a = s.labels[coarse.edges[e][0]], b = s.labels[coarse.edges[e][1]];
+      if (a == b) continue;
+      if (a > b) std::swap(a, b);
+      between[{a, b}] += coarse.weights[e];
+    }
+    std::vector<std::pair<double, std::pair<int, int>>> pairs;
+    for (const auto& [ab, w] : between) pairs.push_back({-w, ab});
+    std::sort(pairs.begin(), pairs.end());
+    const int merges = std::min<int>(options.merges_per_iteration, static_cast<int>(pairs.size()));
+    for (int i = 0; i < merges; ++i) {
+      const auto [a, b] = pairs[i].second;
+      std::vector<int> both = members[a];
+      both.insert(both.end(), members[b].begin(), members[b].end());
+      const int degree = std::max(s.models[a]->model.degree, s.models[b]->model.degree);
+      if (auto model = fit_vertices(both, degree, fit)) s.models.push_back(make_candidate(std::move(*model)));
+    }
+  }
+
+  // Algorithm 1 from step (1) on `s`, until the labeling is stable or the iteration cap.
+  RunResult pearl(RunState s, std::uint64_t seed, const std::atomic<bool>& stop) const {
+    RunResult r;
+    for (int it = 0; it < options.max_iterations; ++it) {
+      if (stop.load()) throw Error(ErrorKind::Cancelled, "cancelled during segmentation");
+      ExpansionOptions eo;
+      eo.max_sweeps = options.expansion_sweeps;
+      eo.seed = mix_seed(seed, static_cast<std::uint64_t>(it));
+      const ExpansionSummary ex = alpha_expansion(problem(s), s.labels, eo);
+      const bool stable = ex.labels == s.labels;
+      s.labels = ex.labels;
+      r.history.push_back(ex.energy);
+      r.iterations = it + 1;
+      drop_unused(s);
+      const int used = static_cast<int>(s.models.size());
+      refit(s);
+      if (stable) {
+        r.converged = true;
+        break;
+      }
+      propose(s, used);
+    }
+    drop_unused(s);
+    r.energy = labeling_energy(problem(s), s.labels);
+    r.state = std::move(s);
+    return r;
+  }
+
+  // ---- results ----
+
+  ImplicitModel to_input_units(ImplicitModel m) const {
+    m.center = origin + unit * m.center;
+    m.scale = unit * m.scale;
+    return m;
+  }
+
+  Segmentation result(const RunState& s) const {
+    Segmentation out;
+    const std::vector<int> fine = coarse.propagate(s.labels);
+    std::vector<int> remap(s.models.size(), -1);
+    out.labels.resize(fine.size());
+    for (std::size_t v = 0; v < fine.size(); ++v) {
+      int& r = remap[fine[v]];
+      if (r < 0) {
+        r = static_cast<int>(out.models.size());
+        out.models.push_back(to_input_units(s.models[fine[v]]->model));
+      }
+      out.labels[v] = r;
+    }
+    // Eq. 1-4 on the proxy itself (the labelled graph may be coarser).
+    SegmentEnergy& E = out.summary.energy;
+    double fid = 0.0;
+    for (int v = 0; v < graph.vertex_count(); ++v)
+      for (int p : graph.points_of(v)) fid += s.models[fine[v]]->dist2[p];
+    E.fidelity = fidelity_scale * fid;
+    double cut = 0.0, W = 0.0;
+    for (std::size_t e = 0; e < graph.edges.size(); ++e) {
+      W += graph.weights[e];
+      if (fine[graph.edges[e][0]] != fine[graph.edges[e][1]]) cut += graph.weights[e];
+    }
+    E.smoothness = W > 0 ? cut / W : 0.0;
+    for (const auto& m : out.models) E.simplicity += m.dimension() / 35.0;
+    E.total = E.fidelity + options.w_smooth * E.smoothness + options.w_simp * E.simplicity;
+    return out;
+  }
+
+  Segmentation rerun_with(RunState s, const Progress& progress) {
+    const auto start = Clock::now();
+    progress.update("segmentation", 0.0);
+    std::atomic<bool> stop{false};
+    RunResult r = pearl(std::move(s), mix_seed(options.seed, 0xfeed), stop);
+    progress.update("segmentation", 1.0);
+    Segmentation out = result(r.state);
+    out.summary = finish_summary(out.summary.energy, r, 1, 0, {r.energy});
+    out.summary.segmentation_s = seconds_since(start);
+    current = std::move(r.state);
+    return out;
+  }
+
+  SegmentationSummary finish_summary(const SegmentEnergy& energy, const RunResult& r, int runs,
+                                     int best, std::vector<double> energies) const {
+    SegmentationSummary summary = base_summary;
+    summary.energy = energy;
+    summary.iterations = r.iterations;
+    summary.converged = r.converged;
+    summary.restarts = runs;
+    summary.best_restart = best;
+    summary.restart_energies = std::move(energies);
+    summary.energy_history = r.history;
+    return summary;
+  }
+
+  // Labelled-graph vertices of proxy vertices, validated.
+  std::vector<int> scribbled(const std::vector<int>& vertices) const {
+    if (!current) throw Error::usage("scribbles need a segmentation: call run() first");
+    if (vertices.empty()) throw Error::usage("the scribble covers no vertex");
+    std::vector<int> out;
+    for (int v : vertices) {
+      if (v < 0 || v >= graph.vertex_count())
+        throw Error::usage("scribbled vertex " + std::to_string(v) + " is not a proxy vertex (" +
+                           std::to_string(graph.vertex_count()) + " vertices)");
+      out.push_back(coarse.fine_to_coarse[v]);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  Segmentation add_region(const std::vector<int>& fine, const std::vector<int>& scribble,
+                          const Progress& progress) {
+    auto model = fit_vertices(fine, options.max_degree, fit);
+    if (!model) throw Error::processing("the scribbled vertices have no stroke point to fit a surface to");
+    RunState s = *current;
+    s.models.push_back(make_candidate(std::move(*model)));
+    s.constraints.push_back({scribble, static_cast<int>(s.models.size()) - 1});
+    return rerun_with(std::move(s), progress);
+  }
+};
+
+Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOptions& options,
+                     const Progress& progress)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  std::string why;
+  if (!options.valid(&why)) throw Error::usage(why);
+  m.options = options;
+  auto start = Clock::now();
+  progress.update("association", 0.0);
+
+  // Normalise: the sketch's box centred at the origin with a unit diagonal (METHOD.md).
+  const BoundingBox box = sketch.bounding_box();
+  if (box.empty() || !(box.diagonal() > 0) || !std::isfinite(box.diagonal()))
+    throw Error::processing("the sketch has no extent to segment (empty or a single point)");
+  m.origin = 0.5 * (box.min + box.max);
+  m.unit = box.diagonal();
+  Sketch normalised = sketch;
+  for (auto& s : normalised.strokes)
+    for (auto& p : s.points) p = (p - m.origin) / m.unit;
+  TriMesh mesh = proxy;
+  for (auto v : mesh.vertices())
+    mesh.set_point(v, to_openmesh((to_eigen(mesh.point(v)) - m.origin) / m.unit));
+  AssociationOptions ao = options.association;
+  ao.threads = options.threads;
+  m.graph = associate(normalised, mesh, ao);
+  if (m.graph.association_count() == 0)
+    throw Error::processing("no stroke could be associated with the proxy: is the proxy near the strokes?");
+  m.coarse = options.simplify ? simplify_graph(mesh, m.graph, ao, options.simplification)
+                              : identity_graph(m.graph);
+  m.fidelity_scale = 1.0 / (options.epsilon * options.epsilon * m.graph.association_count());
+  // W of Eq. 3 on the proxy, also on a coarser graph: a cut along strokes costs the same on both.
+  double W = 0.0;
+  for (double w : m.graph.weights) W += w;
+  m.smooth_scale = W > 0 ? options.w_smooth / W : 0.0;
+  m.fit.mu = options.mu;
+  m.fit.lambda = options.lambda;
+  m.fit.length_unit = 1.0;  // the unit diagonal, as in the paper
+  m.boosted_fit = m.fit;
+  m.boosted_fit.mu *= options.init_boost;
+  m.boosted_fit.lambda *= options.init_boost;
+  m.base_summary.association_s = seconds_since(start);
+  m.base_summary.graph_vertices = m.coarse.vertex_count;
+  m.base_summary.proxy_vertices = m.graph.vertex_count();
+  m.base_summary.associated_points = m.graph.association_count();
+  progress.update("association", 1.0);
+
+  // Initial models (§4.2): spectral clustering of the labelled graph for each k, one fit with
+  // boosted regularisation per cluster that has stroke points.
+  start = Clock::now();
+  progress.update("initialisation", 0.0);
+  const auto& ks = options.cluster_counts;
+  std::vector<std::vector<int>> clusters(ks.size());
+  parallel_for(0, ks.size(), options.threads, [&](std::size_t i) {
+    const int k = std::min(ks[i], m.coarse.vertex_count);
+    SpectralOptions so;
+    so.threads = 1;  // the clusterings themselves run in parallel
+    clusters[i] = spectral_clustering(m.coarse.vertex_count, m.coarse.edges, m.coarse.weights, k,
+                                      mix_seed(options.seed, 1000 + i), so);
+  });
+  progress.update("initialisation", 0.3);
+  std::vector<std::pair<std::size_t, int>> jobs;  // (clustering, cluster)
+  std::vector<std::vector<std::vector<int>>> members(ks.size());
+  for (std::size_t i = 0; i < ks.size(); ++i) {
+    const int k = *std::max_element(clusters[i].begin(), clusters[i].end()) + 1;
+    members[i].resize(k);
+    for (int v = 0; v < m.graph.vertex_count(); ++v)
+      members[i][clusters[i][m.coarse.fine_to_coarse[v]]].push_back(v);
+    for (int c = 0; c < k; ++c) jobs.push_back({i, c});
+  }
+  std::vector<CandidatePtr> made(jobs.size());
+  parallel_for(0, jobs.size(), options.threads, [&](std::size_t j) {
+    auto model = m.fit_vertices(members[jobs[j].first][jobs[j].second], options.max_degree, m.boosted_fit);
+    if (model) made[j] = m.make_candidate(std::move(*model));
+  });
+  for (auto& c : made)
+    if (c) m.initial.push_back(std::move(c));
+  m.base_summary.initial_models = static_cast<int>(m.initial.size());
+  m.base_summary.init_s = seconds_since(start);
+  progress.update("initialisation", 1.0);
+}
+
+Segmenter::~Segmenter() = default;
+Segmenter::Segmenter(Segmenter&&) noexcept = default;
+Segmenter& Segmenter::operator=(Segmenter&&) noexcept = default;
+
+const StrokeGraph& Segmenter::association() const { return impl_->graph; }
+const SimplifiedGraph& Segmenter::graph() const { return impl_->coarse; }
+
+Segmentation Segmenter::run(const Progress& progress) {
+  Impl& m = *impl_;
+  const auto start = Clock::now();
+  const int runs = m.options.restarts;
+  std::vector<std::optional<RunResult>> results(runs);
+  std::atomic<int> done{0};
+  std::atomic<bool> stop{false};
+  const auto caller = std::this_thread::get_id();
+  progress.update("segmentation", 0.0);
+  parallel_for(0, static_cast<std::size_t>(runs), m.options.threads, [&](std::size_t r) {
+    const std::uint64_t seed = mix_seed(m.options.seed, r);
+    RunState s;
+    s.models = m.initial;
+    // Algorithm 1 starts from a single label; each restart starts from a different one.
+    const int first = r == 0 ? 0 : static_cast<int>(seed % m.initial.size());
+    s.labels.assign(m.coarse.vertex_count, first);
+    try {
+      results[r] = m.pearl(std::move(s), seed, stop);
+    } catch (...) {
+      stop = true;
+      throw;
+    }
+    ++done;
+    if (std::this_thread::get_id() == caller) {
+      try {
+        progress.update("segmentation", static_cast<double>(done) / runs);
+      } catch (...) {
+        stop = true;
+        throw;
+      }
+    }
+  });
+  int best = 0;
+  std::vector<double> energies(runs);
+  for (int r = 0; r < runs; ++r) {
+    energies[r] = results[r]->energy;
+    if (energies[r] < energies[best]) best = r;
+  }
+  Segmentation out = m.result(results[best]->state);
+  out.summary = m.finish_summary(out.summary.energy, *results[best], runs, best, std::move(energies));
+  out.summary.segmentation_s = seconds_since(start);
+  m.current = std::move(results[best]->state);
+  progress.update("segmentation", 1.0);
+  return out;
+}
+
+Segmentation Segmenter::insert_region(const std::vector<int>& vertices, const Progress& progress) {
+  Impl& m = *impl_;
+  const std::vector<int> scribble = m.scribbled(vertices);
+  return m.add_region(vertices, scribble, progress);
+}
+
+Segmentation Segmenter::merge_regions(const std::vector<int>& vertices, const Progress& progress) {
+  Impl& m = *impl_;
+  const std::vector<int> scribble = m.scribbled(vertices);
+  // Every proxy vertex connected to a scribbled vertex through vertices of its label.
+  const std::vector<int> labels = m.coarse.propagate(m.current->labels);
+  std::vector<std::vector<int>> adjacency(m.graph.vertex_count());
+  for (const auto& e : m.graph.edges)
+    if (labels[e[0]] == labels[e[1]]) {
+      adjacency[e[0]].push_back(e[1]);
+      adjacency[e[1]].push_back(e[0]);
+    }
+  std::vector<char> seen(m.graph.vertex_count(), 0);
+  std::vector<int> region, stack;
+  for (int v : vertices)
+    if (!seen[v]) seen[v] = 1, stack.push_back(v);
+  while (!stack.empty()) {
+    const int v = stack.back();
+    stack.pop_back();
+    region.push_back(v);
+    for (int w : adjacency[v])
+      if (!seen[w]) seen[w] = 1, stack.push_back(w);
+  }
+  std::sort(region.begin(), region.end());
+  return m.add_region(region, scribble, progress);
+}
+
+Segmentation segment(const Sketch& sketch, const TriMesh& proxy, const SegmentOptions& options,
+                     const Progress& progress) {
+  Segmenter segmenter(sketch, proxy, options, progress);
+  return segmenter.run(progress);
+}
+
+}  // namespace sketchsurf

@@ -1,0 +1,123 @@
+#pragma once
+// Segmentation of the proxy into regions, one implicit polynomial per region: the energy of
+// Eq. 1-4 minimised by PEARL (paper §4.2, Algorithm 1) from spectral-clustering initial models,
+// with restarts, and the scribble constraints of §5 (Eq. 10).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "surfacing/mesh.h"
+#include "surfacing/progress.h"
+#include "surfacing/segment/association.h"
+#include "surfacing/segment/implicit.h"
+#include "surfacing/segment/simplify.h"
+#include "surfacing/sketch/sketch.h"
+
+namespace sketchsurf {
+
+/// Every tunable of the segmentation, with the paper's defaults. Lengths are fractions of the
+/// sketch's bounding-box diagonal: the work happens in coordinates where that diagonal is 1.
+struct SegmentOptions {
+  double epsilon = 0.01;      ///< eps of E_fidelity, fraction of the diagonal (Eq. 2)
+  double w_smooth = 10.0;     ///< weight of E_smoothness (Eq. 1, 3)
+  double w_simp = 0.01;       ///< weight of E_simplicity (Eq. 1, 4)
+  double mu = 0.1;            ///< proxy-normal alignment weight of the fit (Eq. 6)
+  double lambda = 1.0;        ///< L2 regularisation of the fit (Eq. 6, App. B)
+  double init_boost = 10.0;   ///< mu and lambda multiplier for the initial fits (§4.2)
+  std::vector<int> cluster_counts{20, 30, 40, 50};  ///< spectral clusterings k (§4.2)
+  int max_degree = 4;         ///< degree of the initial fits, highest degree (§4.2: d <= 4)
+  int merges_per_iteration = 3;  ///< merge proposals per PEARL iteration (§4.2)
+  bool all_lower_degrees = true;  ///< propose fits of every degree below d, not only d - 1 (§4.2
+                                  ///< has d - 1; ours: that ladder stalls on a plane whose degree-3
+                                  ///< fit is worse than its degree-4 and degree-1 fits)
+  int max_iterations = 30;    ///< cap on PEARL iterations (public implementation)
+  int restarts = 10;          ///< independent runs, lowest energy kept (§4.2, Fig. 7)
+  std::uint64_t seed = 123;   ///< base seed; restart r uses a seed derived from it and r
+  unsigned threads = 0;       ///< worker threads (0 = all); results do not depend on it
+  int expansion_sweeps = 10;  ///< alpha-expansion passes over the labels per PEARL step (1)
+  double penalty_factor = 10.0;  ///< scribble penalty rho = (penalty_factor * epsilon)^2 (Eq. 10)
+  bool simplify = true;       ///< label a coarsened graph (App. C) and propagate back
+  AssociationOptions association;   ///< stroke-to-proxy association (App. A)
+  SimplifyOptions simplification;   ///< graph simplification (App. C)
+  bool valid(std::string* why) const;
+};
+
+/// The energy of Eq. 1 split into its terms (unweighted), for a labeling of the proxy.
+struct SegmentEnergy {
+  double fidelity = 0.0;    ///< Eq. 2
+  double smoothness = 0.0;  ///< Eq. 3 on the proxy's edges
+  double simplicity = 0.0;  ///< Eq. 4
+  double total = 0.0;       ///< Eq. 1: fidelity + w_smooth smoothness + w_simp simplicity
+};
+
+/// What a segmentation run did.
+struct SegmentationSummary {
+  SegmentEnergy energy;          ///< of the returned labeling, on the proxy
+  int iterations = 0;            ///< PEARL iterations of the kept run
+  bool converged = false;        ///< the kept run stopped because its labeling was stable
+  int restarts = 0;              ///< runs made
+  int best_restart = 0;          ///< index of the kept run
+  std::vector<double> restart_energies;  ///< total energy (on the labelled graph) of each run
+  std::vector<double> energy_history;    ///< kept run: total energy after each step (1)
+  int initial_models = 0;        ///< models proposed by the initialisation
+  int graph_vertices = 0;        ///< vertices of the labelled (simplified) graph
+  int proxy_vertices = 0;
+  std::size_t associated_points = 0;  ///< N_p of Eq. 2
+  double association_s = 0.0;    ///< wall time: association and graph simplification
+  double init_s = 0.0;           ///< wall time: spectral clustering and initial fits
+  double segmentation_s = 0.0;   ///< wall time: PEARL runs (all restarts) or the scribble re-run
+};
+
+/// A labeling of the proxy's vertices and one model per label.
+struct Segmentation {
+  std::vector<int> labels;            ///< per proxy vertex, index into models
+  std::vector<ImplicitModel> models;  ///< one per label in use (labels are compacted 0..k-1), input units
+  SegmentationSummary summary;
+};
+
+/// Segmentation state kept between runs, so that scribbles re-run PEARL from step (1) without
+/// re-associating the strokes or re-initialising (§5 "User control").
+class Segmenter {
+ public:
+  /// Normalises the inputs (unit diagonal), associates the strokes with the proxy (App. A),
+  /// simplifies the graph (App. C) and fits the initial models (§4.2). Throws Error (Usage) for
+  /// invalid options, Error (Processing) when the sketch has no usable stroke or the proxy no
+  /// triangle, Error (Cancelled) through `progress`.
+  Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOptions& options = {},
+            const Progress& progress = {});
+  ~Segmenter();
+  Segmenter(Segmenter&&) noexcept;
+  Segmenter& operator=(Segmenter&&) noexcept;
+
+  /// Runs PEARL options.restarts times in parallel from the initial models, keeps the run of
+  /// lowest energy and returns it. Deterministic for the seed whatever the thread count.
+  Segmentation run(const Progress& progress = {});
+
+  /// Scribble "insert a region" (§5): fits a new model to the stroke points of `vertices` (proxy
+  /// vertex indices), penalises every other label on them with rho (Eq. 10) and re-runs PEARL
+  /// from step (1) on the current result. Requires a previous run(). Throws Error (Usage) for an
+  /// empty or out-of-range vertex set or no previous run, Error (Processing) when the scribbled
+  /// vertices have no stroke point.
+  Segmentation insert_region(const std::vector<int>& vertices, const Progress& progress = {});
+  /// Scribble "merge regions" (§5): fits a new model to the stroke points of every vertex that
+  /// shares a label with a scribbled vertex and is connected to it within that label, penalises
+  /// other labels on the scribbled vertices (Eq. 10), re-runs PEARL from step (1).
+  Segmentation merge_regions(const std::vector<int>& vertices, const Progress& progress = {});
+
+  /// The association on normalised coordinates (unit diagonal, centred on the sketch's box).
+  const StrokeGraph& association() const;
+  /// The labelled graph (the proxy's when options.simplify is off).
+  const SimplifiedGraph& graph() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// One-shot segmentation: Segmenter(sketch, proxy, options, progress).run(progress).
+Segmentation segment(const Sketch& sketch, const TriMesh& proxy, const SegmentOptions& options = {},
+                     const Progress& progress = {});
+
+}  // namespace sketchsurf
