@@ -1,0 +1,57 @@
+#pragma once
+// Scene building: turns a sketch and a mesh into GPU-ready vertex and index arrays (CPU side).
+// Built once per scene; the renderer uploads the arrays once and draws them many times.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/render/gpu_types.h"
+#include "surfacing/mesh.h"
+#include "surfacing/sketch/io/mesh_io.h"
+#include "surfacing/sketch/sketch.h"
+
+namespace sketchsurf::render {
+
+/// How strokes and meshes become geometry. Widths are fractions of the scene's bounding-box
+/// diagonal (strokes and mesh together), so pictures do not depend on the sketch's units.
+struct SceneOptions {
+  double stroke_width = 0.006;   ///< ribbon width of strokes, fraction of the bbox diagonal
+  bool stroke_colors = false;    ///< strokes in their own colours (else palette.h kStrokeColor)
+  bool regions = false;          ///< colour the mesh by vertex labels (palette.h), when it has them
+  bool region_boundaries = true; ///< with `regions`: outline the curves between regions
+  double sharp_angle = 45.0;     ///< outline mesh edges with a dihedral angle above this, degrees;
+                                 ///< mesh boundary edges too; >= 180 turns it off
+  bool wireframe = false;        ///< draw every mesh edge thinly
+  double edge_width = 0.004;     ///< ribbon width of outlined edges, fraction of the bbox diagonal
+  double wire_width = 0.0015;    ///< ribbon width of wireframe edges, fraction of the bbox diagonal
+
+  /// False (with the reason in `why`) when a width is not positive and finite or the angle negative.
+  bool valid(std::string* why) const;
+};
+
+/// GPU-ready arrays of one scene. Positions are relative to `origin`, so that single precision
+/// keeps its digits for sketches far from the origin.
+struct SceneGeometry {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< world position of the vertices' (0,0,0)
+  BoundingBox bounds;                                ///< strokes + mesh, world coordinates
+  std::vector<RibbonVertex> ribbon_vertices;         ///< strokes first, then outlined/wire edges
+  std::vector<std::uint32_t> ribbon_indices;         ///< triangle list
+  std::uint32_t stroke_index_count = 0;              ///< the first indices draw strokes, the rest edges
+  std::vector<MeshVertex> mesh_vertices;
+  std::vector<std::uint32_t> mesh_indices;           ///< triangle list
+  std::size_t stroke_points = 0;                     ///< stroke points drawn
+  std::size_t outlined_edges = 0;                    ///< crease, boundary and region-boundary segments
+
+  bool empty() const { return ribbon_indices.empty() && mesh_indices.empty(); }
+};
+
+/// Builds the geometry of `sketch` (strokes with fewer than 2 points are skipped) and, when
+/// `mesh` is given, of the mesh with its `attributes` (labels for regions, colours).
+/// Throws Error (Usage) when `options` is not valid or an attribute array's size differs from the
+/// mesh's vertex count.
+SceneGeometry build_scene(const Sketch& sketch, const TriMesh* mesh = nullptr,
+                          const MeshAttributes* attributes = nullptr,
+                          const SceneOptions& options = {});
+
+}  // namespace sketchsurf::render
