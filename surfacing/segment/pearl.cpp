@@ -176,7 +176,9 @@ struct Segmenter::Impl {
         pr.data_cost(vc, a) = fidelity_scale * sum;
       }
     }
-    const double rho = std::pow(options.penalty_factor * options.epsilon, 2);
+    // Eq. 10's rho = (10 eps)^2 is a squared distance: it goes through Eq. 2's normalisation
+    // like the fidelity of a point 10 eps away from its model.
+    const double rho = std::pow(options.penalty_factor * options.epsilon, 2) * fidelity_scale;
     for (const auto& c : s.constraints)
       for (int vc : c.vertices)
         for (int a = 0; a < L; ++a)

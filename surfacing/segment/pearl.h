@@ -37,7 +37,8 @@ struct SegmentOptions {
   std::uint64_t seed = 123;   ///< base seed; restart r uses a seed derived from it and r
   unsigned threads = 0;       ///< worker threads (0 = all); results do not depend on it
   int expansion_sweeps = 10;  ///< alpha-expansion passes over the labels per PEARL step (1)
-  double penalty_factor = 10.0;  ///< scribble penalty rho = (penalty_factor * epsilon)^2 (Eq. 10)
+  double penalty_factor = 10.0;  ///< scribble penalty rho = (penalty_factor * epsilon)^2 (Eq. 10),
+                                 ///< a squared distance, normalised like E_fidelity (Eq. 2)
   bool simplify = true;       ///< label a coarsened graph (App. C) and propagate back
   AssociationOptions association;   ///< stroke-to-proxy association (App. A)
   SimplifyOptions simplification;   ///< graph simplification (App. C)
