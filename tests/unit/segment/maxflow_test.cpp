@@ -77,16 +77,60 @@ TEST(MaxFlow, MatchesBruteForceMinCutOnRandomGraphs) {
   MaxFlow flow(0);  // reused across problems through clear()
   for (int trial = 0; trial < 300; ++trial) {
     const CutProblem p = random_problem(rng);
-    load(p, flow);
-    const double value = flow.solve();
     const double expected = p.brute_force_min_cut();
     const double tolerance = 1e-9 * (1.0 + expected);
-    ASSERT_NEAR(value, expected, tolerance) << "trial " << trial << " n " << p.n;
-    unsigned side = 0;
-    for (int v = 0; v < p.n; ++v)
-      if (flow.on_source_side(v)) side |= 1u << v;
-    ASSERT_NEAR(p.cost(side), expected, tolerance) << "the reported cut is not minimal, trial "
-                                                    << trial;
+    for (MaxFlowSolver solver : {MaxFlowSolver::Native, MaxFlowSolver::Boost}) {
+      load(p, flow);
+      const double value = flow.solve(solver);
+      ASSERT_NEAR(value, expected, tolerance) << "trial " << trial << " n " << p.n;
+      unsigned side = 0;
+      for (int v = 0; v < p.n; ++v)
+        if (flow.on_source_side(v)) side |= 1u << v;
+      ASSERT_NEAR(p.cost(side), expected, tolerance)
+          << "the reported cut is not minimal, trial " << trial;
+    }
+  }
+}
+
+// Cost of the cut `flow` reports, recomputed from the problem.
+double reported_cut_cost(const CutProblem& p, const MaxFlow& flow) {
+  double c = 0.0;
+  for (int v = 0; v < p.n; ++v) c += flow.on_source_side(v) ? p.sink[v] : p.source[v];
+  for (const auto& e : p.edges) {
+    const bool su = flow.on_source_side(e.u), sv = flow.on_source_side(e.v);
+    if (su && !sv) c += e.uv;
+    if (sv && !su) c += e.vu;
+  }
+  return c;
+}
+
+TEST(MaxFlow, AgreesWithBoostOnLargeGridGraphs) {
+  // Expansion-like graphs: a 60 x 60 grid with diagonals, random terminal weights and
+  // asymmetric edge capacities over six orders of magnitude.
+  std::mt19937 rng(99);
+  for (int trial = 0; trial < 6; ++trial) {
+    CutProblem p;
+    const int side = 60;
+    p.n = side * side;
+    for (int v = 0; v < p.n; ++v) {
+      p.source.push_back(random_capacity(rng, 0.5));
+      p.sink.push_back(random_capacity(rng, 0.5));
+    }
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        const int v = y * side + x;
+        if (x + 1 < side) p.edges.push_back({v, v + 1, random_capacity(rng, 0.1), random_capacity(rng, 0.1)});
+        if (y + 1 < side) p.edges.push_back({v, v + side, random_capacity(rng, 0.1), random_capacity(rng, 0.1)});
+        if (x + 1 < side && y + 1 < side)
+          p.edges.push_back({v, v + side + 1, random_capacity(rng, 0.3), random_capacity(rng, 0.3)});
+      }
+    MaxFlow ours(0), reference(0);
+    load(p, ours);
+    load(p, reference);
+    const double a = ours.solve(), b = reference.solve(MaxFlowSolver::Boost);
+    EXPECT_NEAR(a, b, 1e-9 * b) << "trial " << trial;
+    EXPECT_NEAR(reported_cut_cost(p, ours), a, 1e-9 * a);
+    EXPECT_NEAR(reported_cut_cost(p, reference), b, 1e-9 * b);
   }
 }
 
