@@ -335,7 +335,8 @@ PolygonSoup read_ply_soup(const std::filesystem::path& file, bool want_attribute
   const std::string text = io_detail::read_file(file);
   PlyFormat format = PlyFormat::Ascii;
   std::vector<PlyElement> elements;
-  PlyData data(text, read_ply_header(text, file, format, elements), format, file);
+  const std::size_t data_start = read_ply_header(text, file, format, elements);
+  PlyData data(text, data_start, format, file);
 
   PolygonSoup soup;
   bool have_vertices = false;
