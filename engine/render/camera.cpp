@@ -96,15 +96,33 @@ Eigen::Vector3d Camera::project(const Eigen::Vector3d& p, int width, int height)
 Camera fit_camera(const BoundingBox& box, View view, double aspect, const FitOptions& options) {
   const auto [centre, radius] = sphere_of(box);
   const ViewDirection dir = direction(view);
-  // The sphere fits when its tangent cone from the eye is inside both half fields of view.
-  const double half_y = 0.5 * options.fov_y * kDegree;
-  const double half_x = std::atan(std::tan(half_y) * aspect);
-  const double distance = std::max(options.margin, 1.0) * radius / std::sin(std::min(half_x, half_y));
   Camera camera;
   camera.fov_y = options.fov_y;
   camera.target = centre;
-  camera.eye = centre + distance * dir.towards_eye.normalized();
   camera.up = dir.up;
+  const Eigen::Vector3d back = dir.towards_eye.normalized();
+  const Eigen::Vector3d right = dir.up.cross(back).normalized();
+  const Eigen::Vector3d up = back.cross(right);
+  // Each corner of the box (or of the sphere's cube for an empty or point-like box) must be in
+  // the view frustum: with the corner at (x, y, z) in the camera frame around the target (z
+  // towards the eye), the eye at distance d sees it inside when |x| <= tan(half_x) (d - z), and
+  // likewise for y. The frustum is convex, so every point of the box is then inside too.
+  const double margin = std::max(options.margin, 1.0);
+  const double tan_y = std::tan(0.5 * options.fov_y * kDegree) / margin;
+  const double tan_x = tan_y * aspect;
+  const bool degenerate = box.empty() || box.diagonal() == 0.0;
+  const Eigen::Vector3d lo = degenerate ? centre - Eigen::Vector3d::Constant(radius) : box.min;
+  const Eigen::Vector3d hi = degenerate ? centre + Eigen::Vector3d::Constant(radius) : box.max;
+  double distance = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d p((corner & 1) ? hi.x() : lo.x(), (corner & 2) ? hi.y() : lo.y(),
+                            (corner & 4) ? hi.z() : lo.z());
+    const Eigen::Vector3d q = p - centre;
+    const double z = q.dot(back);
+    distance = std::max({distance, z + std::abs(q.dot(right)) / tan_x,
+                         z + std::abs(q.dot(up)) / tan_y, z + 1e-3 * radius});
+  }
+  camera.eye = centre + distance * back;
   fit_clip_planes(camera, box);
   return camera;
 }

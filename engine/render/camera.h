@@ -48,12 +48,13 @@ struct Camera {
 /// How fit_camera() frames a box.
 struct FitOptions {
   double fov_y = 35.0;   ///< vertical field of view, degrees
-  double margin = 1.08;  ///< distance multiplier over the tightest fit of the bounding sphere (>= 1)
+  double margin = 1.08;  ///< the box fills at most 1/margin of the half field of view (>= 1)
 };
 
-/// A camera looking at the centre of `box` from `view`, far enough that the box's bounding sphere
-/// is inside the picture of aspect `aspect` (width / height). An empty or zero-size box is treated
-/// as a unit sphere around its centre (or the origin).
+/// A camera looking at the centre of `box` from `view`, at the smallest distance that keeps every
+/// corner of the box (hence every point in it) inside the picture of aspect `aspect`
+/// (width / height), with `options.margin`. An empty or zero-size box is treated as a cube of
+/// half side 1 around its centre (or the origin).
 Camera fit_camera(const BoundingBox& box, View view, double aspect, const FitOptions& options = {});
 
 /// Sets near and far planes of `camera` so that `box` (grown by 10%) lies between them.

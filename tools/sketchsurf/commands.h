@@ -18,6 +18,10 @@ struct GlobalOptions {
 
 void add_info_command(CLI::App& app, const GlobalOptions& global);
 void add_convert_command(CLI::App& app, const GlobalOptions& global);
+/// `segment` (cmd_segment.cpp): proxy labelled into smooth regions, paper §4.1-4.2.
+void add_segment_command(CLI::App& app, const GlobalOptions& global);
+/// `render` (cmd_render.cpp); only in builds with SKETCHSURF_ENGINE (SKETCHSURF_HAVE_ENGINE).
+void add_render_command(CLI::App& app, const GlobalOptions& global);
 
 /// Progress on stderr: a bar on a terminal, one plain line per stage and per 10% otherwise.
 ProgressCallback stderr_progress(const GlobalOptions& global);

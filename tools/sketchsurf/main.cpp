@@ -17,8 +17,12 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", global.verbose, "Print the parameters in effect and more detail");
   app.add_flag("-q,--quiet", global.quiet, "No progress or warnings on stderr");
 
-  //cli::add_info_command(app, global);
-  //cli::add_convert_command(app, global);
+  cli::add_info_command(app, global);
+  cli::add_convert_command(app, global);
+  cli::add_segment_command(app, global);
+#ifdef SKETCHSURF_HAVE_ENGINE
+  cli::add_render_command(app, global);
+#endif
 
   try {
     app.parse(argc, argv);
