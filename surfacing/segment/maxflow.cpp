@@ -272,9 +272,9 @@ class BoykovKolmogorov {
 
   // Finds each orphan a new parent in its tree whose path reaches the terminal, or frees it.
   void adopt() {
-    while (!orphans_.empty()) {
-      const int x = orphans_.back();
-      orphans_.pop_back();
+    // First in, first out: parents are adopted (or freed) before their children are looked at.
+    for (std::size_t next_orphan = 0; next_orphan < orphans_.size(); ++next_orphan) {
+      const int x = orphans_[next_orphan];
       const unsigned char t = tree_[x];
       int best_arc = kNone, best_distance = 0;
       for (int a = offsets_[x]; a < offsets_[x + 1]; ++a) {
@@ -328,6 +328,7 @@ class BoykovKolmogorov {
       tree_[x] = kFree;
       parent_[x] = kNone;
     }
+    orphans_.clear();
   }
 
   const int* offsets_ = nullptr;
