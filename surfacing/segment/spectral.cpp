@@ -68,7 +68,8 @@ struct KMeansResult {
 
 // k-means++ seeding then Lloyd iterations on the columns of xt (d x n: one point per column, so
 // that a point's coordinates and its distances to the centres are contiguous), 1 <= k <= n.
-// Stops when no point changes cluster or after `iterations` assignment steps.
+// Stops when at most 0.1% of the points change cluster (measured: the cut quality stops improving
+// long before Lloyd's iteration fully settles on large graphs) or after `iterations` assignments.
 KMeansResult kmeans(const Eigen::MatrixXd& xt, int k, std::uint64_t seed, int iterations) {
   const Eigen::Index n = xt.cols();
   std::mt19937_64 rng(seed);
@@ -109,7 +110,7 @@ KMeansResult kmeans(const Eigen::MatrixXd& xt, int k, std::uint64_t seed, int it
     // Assignment: |x - c|^2 = |x|^2 - 2 x.c + |c|^2, the cross terms as one matrix product.
     cross.noalias() = centers.transpose() * xt;
     const Eigen::VectorXd c_norms = centers.colwise().squaredNorm().transpose();
-    bool changed = false;
+    Eigen::Index changed = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double* column = cross.col(i).data();
       int best = 0;
@@ -124,11 +125,11 @@ KMeansResult kmeans(const Eigen::MatrixXd& xt, int k, std::uint64_t seed, int it
       distance[i] = std::max(0.0, best_d + x_norms[i]);
       if (result.labels[i] != best) {
         result.labels[i] = best;
-        changed = true;
+        ++changed;
       }
     }
     result.inertia = distance.sum();
-    if (!changed) break;
+    if (changed * 1000 <= n) break;
     // Update: centroids; an emptied cluster takes the point farthest from its centre.
     centers.setZero();
     std::fill(sizes.begin(), sizes.end(), 0);
