@@ -55,6 +55,23 @@ int monomial_count(int degree) {
   return (degree + 1) * (degree + 2) * (degree + 3) / 6;
 }
 
+bool ImplicitModel::valid(std::string* why) const {
+  auto fail = [&](const std::string& what) {
+    if (why) *why = what;
+    return false;
+  };
+  if (degree < 1 || degree > kMaxImplicitDegree)
+    return fail("degree " + std::to_string(degree) + " outside 1..4");
+  if (coefficients.size() != monomial_count(degree))
+    return fail(std::to_string(coefficients.size()) + " coefficients for degree " +
+                std::to_string(degree) + " (expected " + std::to_string(monomial_count(degree)) +
+                ")");
+  if (!coefficients.allFinite()) return fail("non-finite coefficient");
+  if (!center.allFinite()) return fail("non-finite center");
+  if (!(std::isfinite(scale) && scale > 0.0)) return fail("scale must be finite and > 0");
+  return true;
+}
+
 int ImplicitModel::dimension() const { return static_cast<int>(coefficients.size()); }
 
 double ImplicitModel::value(const Eigen::Vector3d& x) const { return evaluate(x.data()); }

@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -51,6 +52,9 @@ struct ImplicitModel {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // normalisation of the coordinates (world)
   double scale = 1.0;                               // world length of one normalised unit, > 0
 
+  /// Whether the fields are consistent: 1 <= degree <= 4, monomial_count(degree) finite
+  /// coefficients, finite center, finite scale > 0. Says what is wrong in *why (if not null).
+  bool valid(std::string* why) const;
   /// dim(theta) used by E_simplicity (Eq. 4): the number of coefficients, 4..35.
   int dimension() const;
   /// f(x) for a world point x.
@@ -105,14 +109,16 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
 template <typename T>
 T ImplicitModel::evaluate(const T* x) const {
   constexpr MonomialExponents kMonomials = implicit_monomials();
+  // Powers up to the degree the coefficients need (not trusting `degree`), at most 35 terms.
+  const Eigen::Index t = std::min<Eigen::Index>(coefficients.size(), kMonomials.size());
+  const int needed = t > 0 ? kMonomials[t - 1][0] + kMonomials[t - 1][1] + kMonomials[t - 1][2] : 0;
   T powers[3][kMaxImplicitDegree + 1];
   for (int i = 0; i < 3; ++i) {
     const T y = (x[i] - T(center[i])) / T(scale);
     powers[i][0] = T(1.0);
-    for (int e = 1; e <= degree; ++e) powers[i][e] = powers[i][e - 1] * y;
+    for (int e = 1; e <= needed; ++e) powers[i][e] = powers[i][e - 1] * y;
   }
   T f = T(0.0);
-  const Eigen::Index t = coefficients.size();
   for (Eigen::Index k = 0; k < t; ++k) {
     const auto& m = kMonomials[k];
     f += coefficients[k] * (powers[0][m[0]] * powers[1][m[1]] * powers[2][m[2]]);
@@ -123,14 +129,16 @@ T ImplicitModel::evaluate(const T* x) const {
 template <typename T>
 void ImplicitModel::evaluate_gradient(const T* x, T* g) const {
   constexpr MonomialExponents kMonomials = implicit_monomials();
+  // Powers up to the degree the coefficients need (not trusting `degree`), at most 35 terms.
+  const Eigen::Index t = std::min<Eigen::Index>(coefficients.size(), kMonomials.size());
+  const int needed = t > 0 ? kMonomials[t - 1][0] + kMonomials[t - 1][1] + kMonomials[t - 1][2] : 0;
   T powers[3][kMaxImplicitDegree + 1];
   for (int i = 0; i < 3; ++i) {
     const T y = (x[i] - T(center[i])) / T(scale);
     powers[i][0] = T(1.0);
-    for (int e = 1; e <= degree; ++e) powers[i][e] = powers[i][e - 1] * y;
+    for (int e = 1; e <= needed; ++e) powers[i][e] = powers[i][e - 1] * y;
   }
   for (int i = 0; i < 3; ++i) g[i] = T(0.0);
-  const Eigen::Index t = coefficients.size();
   for (Eigen::Index k = 1; k < t; ++k) {
     const auto& m = kMonomials[k];
     const double c = coefficients[k];

@@ -109,6 +109,15 @@ TEST(Implicit, HandMadeSphereValueGradientDistance) {
   sphere.coefficients = Eigen::VectorXd::Zero(10);
   sphere.coefficients << -1, 0, 0, 0, 1, 0, 0, 1, 0, 1;
   EXPECT_EQ(sphere.dimension(), 10);
+  EXPECT_TRUE(sphere.valid(nullptr));
+  // With a degree field that is too low the model still evaluates all its coefficients (no
+  // out-of-range read); valid() reports the inconsistency.
+  ImplicitModel inconsistent = sphere;
+  inconsistent.degree = 1;
+  std::string why;
+  EXPECT_FALSE(inconsistent.valid(&why));
+  EXPECT_NE(why.find("coefficients"), std::string::npos) << why;
+  EXPECT_DOUBLE_EQ(inconsistent.value(sphere.center + Eigen::Vector3d(2, 0, 0)), 0.0);
   const Eigen::Vector3d dir = Eigen::Vector3d(1, 2, -2).normalized();
   EXPECT_NEAR(sphere.value(sphere.center + 2.0 * dir), 0.0, 1e-14);
   EXPECT_NEAR(sphere.distance(sphere.center + 2.0 * dir), 0.0, 1e-14);
@@ -207,6 +216,7 @@ TEST(Implicit, FitsPlanesWithEveryDegree) {
   for (int degree = 1; degree <= 4; ++degree) {
     const ImplicitModel model = fit(degree, strokes, proxy, exact);
     EXPECT_EQ(model.dimension(), monomial_count(degree));
+    EXPECT_TRUE(model.valid(nullptr));
     EXPECT_LT(max_distance(model, strokes.points), 1e-8) << "degree " << degree;
     // A plane's Taubin distance is exact where the fitted function is linear (degree 1) and
     // first-order accurate otherwise.
