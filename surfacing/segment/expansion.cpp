@@ -188,22 +188,33 @@ ExpansionSummary alpha_expansion(const LabelingProblem& problem, std::vector<int
   Expander expander(problem, std::move(initial));
   ExpansionSummary summary;
   summary.energy_trace.push_back(expander.energy());
-  std::vector<int> order(problem.label_count());
+  const int labels = problem.label_count();
+  std::vector<int> order(labels);
+  // A move is skipped when the labeling has not changed since alpha was last expanded: a failed
+  // move would fail again, and after an accepted alpha move every alpha-expansion of the new
+  // labeling is also one of the old labeling, which the accepted move already beat. This saves
+  // the last, all-rejecting sweep and changes no result.
+  std::vector<long> expanded_at(labels, -1);  // accepted_moves when alpha was last expanded
   std::mt19937_64 rng(options.seed);
   while (summary.sweeps < options.max_sweeps) {
     // Fisher-Yates with the raw generator output: the same order on every platform.
-    for (int i = 0; i < static_cast<int>(order.size()); ++i) order[i] = i;
-    for (int i = static_cast<int>(order.size()) - 1; i > 0; --i)
+    for (int i = 0; i < labels; ++i) order[i] = i;
+    for (int i = labels - 1; i > 0; --i)
       std::swap(order[i], order[rng() % static_cast<std::uint64_t>(i + 1)]);
     ++summary.sweeps;
     int accepted = 0;
-    for (int alpha : order)
+    for (int alpha : order) {
+      if (expanded_at[alpha] == summary.accepted_moves) continue;
       if (expander.expand(alpha)) {
         ++accepted;
+        ++summary.accepted_moves;
         summary.energy_trace.push_back(expander.energy());
       }
-    summary.accepted_moves += accepted;
-    if (accepted == 0) {
+      expanded_at[alpha] = summary.accepted_moves;
+    }
+    const bool all_tried = std::all_of(expanded_at.begin(), expanded_at.end(),
+                                       [&](long at) { return at == summary.accepted_moves; });
+    if (accepted == 0 || all_tried) {
       summary.converged = true;
       break;
     }

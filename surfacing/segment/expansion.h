@@ -9,7 +9,9 @@
 //   below needs them >= 0.
 // - alpha_expansion expands every label (unused ones too: PEARL's candidate models) once per sweep,
 //   in a seeded random order, and accepts a move only if the total energy strictly drops, so the
-//   energy never increases. It stops after a sweep without an accepted move or after max_sweeps.
+//   energy never increases. It stops once no label can improve the current labeling (moves whose
+//   outcome is known, because the labeling did not change since that label's last expansion, are
+//   skipped) or after max_sweeps.
 //   At convergence E(l) <= 2 (D + S)(l*) + H(l*) + H(l) for the global minimum l* (Boykov et al.
 //   2001 with Delong et al.'s label-cost term; H = label costs).
 // - Deterministic for a seed (single-threaded). Cost per move: one max-flow on the vertices not
@@ -64,7 +66,7 @@ struct ExpansionSummary {
   double energy = 0.0;                // E(labels)
   int sweeps = 0;                     // sweeps run
   int accepted_moves = 0;             // expansions that lowered the energy
-  bool converged = false;             // the last sweep accepted no move
+  bool converged = false;             // no expansion move improves the final labeling
   std::vector<double> energy_trace;   // E before any move, then after each accepted move
 };
 
