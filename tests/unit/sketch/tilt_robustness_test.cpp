@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdlib>
 #include <new>
 #include <random>
@@ -14,23 +15,43 @@
 #include "tests/unit/sketch/tilt_builder.h"
 
 // The largest single operator-new request since the last reset: shows that an absurd count is
-// refused before a buffer is sized from it.
+// refused before a buffer is sized from it. Every replaceable form is replaced, so that memory
+// from any of them is released by the matching function (AddressSanitizer checks this).
 namespace {
 std::atomic<std::size_t> g_largest_allocation{0};
-}  // namespace
 
-void* operator new(std::size_t n) {
+void* tracked_alloc(std::size_t n, std::size_t alignment) noexcept {
   std::size_t seen = g_largest_allocation.load(std::memory_order_relaxed);
   while (n > seen && !g_largest_allocation.compare_exchange_weak(seen, n)) {
   }
-  if (void* p = std::malloc(n ? n : 1)) return p;
+  if (alignment <= alignof(std::max_align_t)) return std::malloc(n ? n : 1);
+  return std::aligned_alloc(alignment, (n + alignment - 1) / alignment * alignment);
+}
+void* tracked_new(std::size_t n, std::size_t alignment) {
+  if (void* p = tracked_alloc(n, alignment)) return p;
   throw std::bad_alloc();
 }
-// GCC 12 takes the std::free below for a mismatch with operator new; here they are one pair.
+}  // namespace
+
+void* operator new(std::size_t n) { return tracked_new(n, 0); }
+void* operator new[](std::size_t n) { return tracked_new(n, 0); }
+void* operator new(std::size_t n, std::align_val_t a) { return tracked_new(n, std::size_t(a)); }
+void* operator new[](std::size_t n, std::align_val_t a) { return tracked_new(n, std::size_t(a)); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return tracked_alloc(n, 0); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return tracked_alloc(n, 0); }
+// GCC 12 takes the std::free below for a mismatch with operator new; here they are one family.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 #pragma GCC diagnostic pop
 
 namespace sketchsurf {
