@@ -140,11 +140,14 @@ class BoykovKolmogorov {
       }
 
     double flow = 0.0;
-    int current = -1;
+    int current = -1, position = 0;
     while (true) {
-      if (current < 0 || tree_[current] == kFree) current = next_active();
-      if (current < 0) break;
-      const int middle = grow(current);
+      if (current < 0 || tree_[current] == kFree) {
+        current = next_active();
+        if (current < 0) break;
+        position = offsets_[current];
+      }
+      const int middle = grow(current, &position);
       if (middle < 0) {
         current = -1;  // exhausted: every neighbour is in a tree
         continue;
@@ -152,7 +155,9 @@ class BoykovKolmogorov {
       ++time_;
       flow += augment(middle);
       adopt();
-      // `current` may still have paths to the other tree: look at it again.
+      // `current` may have more paths to the other tree: resume its scan at the arc that gave
+      // this one. The arcs before it cannot have gained growth capacity, and a neighbour that
+      // adoption freed re-activates `current` through the adoption's own rule.
     }
     return flow;
   }
@@ -185,11 +190,11 @@ class BoykovKolmogorov {
     return tree == kSource ? residual_[a] : residual_[sister_[a]];
   }
 
-  // Grows the tree of node i over its arcs; returns the arc (source tree -> sink tree) of a found
-  // s-t path, or -1.
-  int grow(int i) {
+  // Grows the tree of node i over its arcs from *position on; returns the arc (source tree ->
+  // sink tree) of a found s-t path, leaving *position at the arc that reached it, or -1.
+  int grow(int i, int* position) {
     const unsigned char t = tree_[i];
-    for (int a = offsets_[i]; a < offsets_[i + 1]; ++a) {
+    for (int& a = *position; a < offsets_[i + 1]; ++a) {
       if (growth_capacity(a, t) <= 0.0) continue;
       const int j = head_[a];
       if (tree_[j] == kFree) {
