@@ -114,6 +114,24 @@ TEST(Spectral, PreparedClusteringServesSmallerK) {
   EXPECT_THROW(prepared.cluster(13, 5), Error);
 }
 
+TEST(Spectral, ChainOfCliquesWithNearlyDegenerateSpectrum) {
+  // 200 cliques of 10 chained by bridges of affinity 1e-9: 200 eigenvalues within ~1e-10 of 0, a
+  // hard case for the shift-invert Lanczos solver (2000 vertices, not the dense path). k = 50
+  // clusters must never split a clique.
+  Graph g;
+  for (int c = 0; c < 200; ++c) {
+    add_clique(g, 10 * c, 10, 1.0);
+    if (c > 0) {
+      g.edges.push_back({10 * c - 1, 10 * c});
+      g.affinities.push_back(1e-9);
+    }
+  }
+  const std::vector<int> labels = spectral_clustering(g.n, g.edges, g.affinities, 50, 3);
+  EXPECT_EQ(cluster_count(labels), 50);
+  for (int c = 0; c < 200; ++c)
+    for (int i = 1; i < 10; ++i) EXPECT_EQ(labels[10 * c + i], labels[10 * c]) << "clique " << c;
+}
+
 TEST(Spectral, DisconnectedGraphs) {
   Graph g;
   add_clique(g, 0, 8, 1.0);
