@@ -1,0 +1,210 @@
+#include "surfacing/extract/extract.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "surfacing/error.h"
+#include "surfacing/segment/association.h"
+
+namespace sketchsurf {
+
+bool ExtractOptions::valid(std::string* why) const {
+  if (!seams.valid(why) || !energy.valid(why) || !trim.valid(why)) return false;
+  if (!(plane_tolerance > 0.0)) {
+    if (why) *why = "extract.plane_tolerance must be > 0";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// Bounding-box diagonal of the sketch, including its mirror image when it is a half sketch.
+double sketch_diagonal(const Sketch& sketch) {
+  BoundingBox box = sketch.bounding_box();
+  if (sketch.mirror && !box.empty()) {
+    const BoundingBox half = box;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d p((corner & 1) ? half.max.x() : half.min.x(),
+                              (corner & 2) ? half.max.y() : half.min.y(),
+                              (corner & 4) ? half.max.z() : half.min.z());
+      box.extend(sketch.mirror->reflect(p));
+    }
+  }
+  return box.diagonal();
+}
+
+void check_inputs(const TriMesh& proxy, const std::vector<int>& labels,
+                  const std::vector<ImplicitModel>& models, const Sketch& sketch) {
+  if (proxy.n_faces() == 0) throw Error::processing("the proxy has no triangles");
+  if (labels.size() != proxy.n_vertices())
+    throw Error::usage("extract: " + std::to_string(labels.size()) + " labels for a proxy of " +
+                       std::to_string(proxy.n_vertices()) + " vertices");
+  if (models.empty()) throw Error::usage("extract: no surface models");
+  for (std::size_t i = 0; i < models.size(); ++i)
+    if (models[i].degree < 1 || models[i].degree > kMaxImplicitDegree ||
+        models[i].coefficients.size() != monomial_count(models[i].degree) ||
+        !(models[i].scale > 0.0) || !models[i].coefficients.allFinite())
+      throw Error::usage("extract: model " + std::to_string(i) + " is malformed");
+  for (int l : labels)
+    if (l < 0 || l >= static_cast<int>(models.size()))
+      throw Error::usage("extract: label " + std::to_string(l) + " names no model (" +
+                         std::to_string(models.size()) + " models)");
+  bool any = false;
+  for (const Stroke& s : sketch.strokes) any = any || (!s.ignored && !s.points.empty());
+  if (!any)
+    throw Error::processing("the sketch has no stroke to fit (empty, or every stroke is marked "
+                            "ignored); draw strokes or unmark some");
+}
+
+/// Per vertex: 1 for boundary vertices on the mirror plane.
+std::vector<std::uint8_t> plane_boundary(const TriMesh& mesh, const std::optional<Plane>& plane,
+                                         double tolerance) {
+  std::vector<std::uint8_t> on(mesh.n_vertices(), 0);
+  if (!plane) return on;
+  for (auto v : mesh.vertices())
+    on[v.idx()] = mesh.is_boundary(v) &&
+                  std::abs(plane->signed_distance(to_eigen(mesh.point(v)))) <= tolerance;
+  return on;
+}
+
+}  // namespace
+
+StrokeDistance stroke_distance(const TriMesh& mesh, const Sketch& sketch, double diagonal,
+                               bool mirrored) {
+  std::vector<Eigen::Vector3d> points;
+  for (const Stroke& s : sketch.strokes) {
+    if (s.ignored) continue;
+    for (const auto& p : s.points) {
+      points.push_back(p);
+      if (mirrored && sketch.mirror) points.push_back(sketch.mirror->reflect(p));
+    }
+  }
+  StrokeDistance out;
+  out.points = points.size();
+  if (points.empty()) return out;
+  const ClosestFaceTree tree(vertex_matrix(mesh), face_matrix(mesh));
+  std::vector<double> d(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Eigen::Vector3d q;
+    d[i] = tree.closest_face(points[i], &q) < 0 ? std::numeric_limits<double>::infinity()
+                                                : (q - points[i]).norm() / diagonal;
+  }
+  std::sort(d.begin(), d.end());
+  auto quantile = [&](double f) {
+    return d[std::min(d.size() - 1, static_cast<std::size_t>(std::floor(f * (d.size() - 1) + 0.5)))];
+  };
+  out.median = quantile(0.5);
+  out.p95 = quantile(0.95);
+  out.max = d.back();
+  return out;
+}
+
+ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
+                         const std::vector<ImplicitModel>& models, const Sketch& sketch,
+                         const ExtractOptions& options, const Progress& progress) {
+  const auto start = Clock::now();
+  std::string why;
+  if (!options.valid(&why)) throw Error::usage(why);
+  check_inputs(proxy, labels, models, sketch);
+  const double diagonal = sketch_diagonal(sketch);
+  if (!(diagonal > 0.0)) throw Error::processing("the sketch has zero extent; nothing to surface");
+  const double plane_tolerance = options.plane_tolerance * diagonal;
+
+  ExtractedSurface out;
+  ExtractSummary& summary = out.summary;
+  summary.proxy_vertices = proxy.n_vertices();
+  summary.mirrored = sketch.mirror.has_value();
+  progress.update("extract", 0.0);
+
+  // 1. Open surfaces: trim the proxy along the boundary strokes (App. D).
+  auto t = Clock::now();
+  const bool open = std::any_of(sketch.strokes.begin(), sketch.strokes.end(),
+                                [](const Stroke& s) { return s.boundary && !s.ignored; });
+  TriMesh trimmed;
+  std::vector<int> trimmed_labels;
+  if (open) {
+    TrimResult cut = trim_open_surface(proxy, sketch, sketch.mirror, plane_tolerance, diagonal,
+                                       options.trim);
+    trimmed = std::move(cut.mesh);
+    trimmed_labels.reserve(cut.source_vertex.size());
+    for (int v : cut.source_vertex) trimmed_labels.push_back(labels[v]);
+    summary.trimmed_faces = cut.removed_faces;
+    summary.open = true;
+  }
+  summary.trim_s = seconds_since(t);
+
+  // 2. Seams (§4.3).
+  t = Clock::now();
+  LabeledMesh seamed = insert_seams(open ? trimmed : proxy, open ? trimmed_labels : labels, models,
+                                    options.seams);
+  for (const auto& l : seamed.labels) {
+    summary.seam_vertices += l.size() == 2;
+    summary.corner_vertices += l.size() >= 3;
+  }
+  summary.seams_s = seconds_since(t);
+  progress.update("extract", 0.05);
+
+  // 3. E_mesh (Eq. 7-9, 13).
+  t = Clock::now();
+  MeshConstraints constraints;
+  const std::vector<std::uint8_t> on_plane = plane_boundary(seamed.mesh, sketch.mirror, plane_tolerance);
+  if (sketch.mirror) {
+    constraints.plane = sketch.mirror;
+    for (std::size_t v = 0; v < on_plane.size(); ++v)
+      if (on_plane[v]) constraints.plane_vertices.push_back(static_cast<int>(v));
+  }
+  if (open) constraints.attract = boundary_targets(seamed.mesh, sketch, on_plane, diagonal, options.trim);
+  summary.attracted_vertices = constraints.attract.size();
+  summary.optimization = optimize_mesh(seamed, models, constraints, options.energy, progress);
+  summary.optimize_s = seconds_since(t);
+
+  // Region and crease flags, from the final positions.
+  const std::vector<double> w = regularization_weights(seamed, models, options.energy);
+  std::vector<int> half_labels(seamed.labels.size());
+  std::vector<std::uint8_t> half_sharp(seamed.labels.size());
+  for (std::size_t v = 0; v < seamed.labels.size(); ++v) {
+    half_labels[v] = seamed.labels[v].front();
+    half_sharp[v] = seamed.is_seam(static_cast<int>(v)) && w[v] < 1.0;
+  }
+
+  // 4. Mirror (§5).
+  t = Clock::now();
+  if (sketch.mirror) {
+    std::vector<int> source;
+    out.mesh = mirror_and_weld(seamed.mesh, *sketch.mirror, plane_tolerance, &source);
+    for (int v : source) {
+      out.labels.push_back(half_labels[v]);
+      out.sharp.push_back(half_sharp[v]);
+    }
+  } else {
+    out.mesh = std::move(seamed.mesh);
+    out.labels = std::move(half_labels);
+    out.sharp = std::move(half_sharp);
+  }
+  summary.mirror_s = seconds_since(t);
+  summary.sharp_vertices = std::count(out.sharp.begin(), out.sharp.end(), 1);
+  summary.output_vertices = out.mesh.n_vertices();
+  summary.output_faces = out.mesh.n_faces();
+  summary.stroke_distance = stroke_distance(out.mesh, sketch, diagonal, /*mirrored=*/true);
+  summary.total_s = seconds_since(start);
+  progress.update("extract", 1.0);
+  return out;
+}
+
+TriMesh extract_surface(const TriMesh& proxy, const std::vector<int>& labels,
+                        const std::vector<ImplicitModel>& models, const Sketch& sketch,
+                        const ExtractOptions& options, const Progress& progress,
+                        ExtractSummary* summary) {
+  ExtractedSurface result = extract(proxy, labels, models, sketch, options, progress);
+  if (summary) *summary = result.summary;
+  return std::move(result.mesh);
+}
+
+}  // namespace sketchsurf

@@ -1,0 +1,172 @@
+#pragma once
+// Final mesh optimisation (paper §4.3, Eq. 7-9, and App. D Eq. 13): move the seamed mesh onto the
+// implicit surfaces of its regions while keeping it regular, with Ceres.
+
+#include <ceres/cost_function.h>
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "surfacing/extract/seams.h"
+#include "surfacing/progress.h"
+#include "surfacing/segment/implicit.h"
+#include "surfacing/sketch/sketch.h"
+
+namespace sketchsurf {
+
+/// How E_mesh is minimised. Measured on the 30,000-vertex benchmark (tests/bench/extract_bench):
+/// Levenberg-Marquardt with sparse normal Cholesky converges in a few iterations because the
+/// energy is nearly quadratic; L-BFGS (the paper's choice) needs hundreds of cheap iterations.
+enum class MeshSolver {
+  SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
+  ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
+  Lbfgs,           ///< line search L-BFGS (paper §4.3)
+};
+
+/// Options of E_mesh = E_project + E_regularize + E_attract (Eq. 7-9, 13).
+struct MeshEnergyOptions {
+  double gamma_2d = 100.0;           ///< weight of the 2D graph Laplacian (Eq. 9)
+  double gamma_1d = 500.0;           ///< weight of the 1D Laplacian along seams (Eq. 9)
+  double smooth_angle = M_PI / 8.0;  ///< w_v = 1 when the region normals differ by less (rad, §4.3)
+  double sharp_angle = M_PI / 3.0;   ///< w_v = 0 when they differ by more (rad, §4.3)
+  double attract_weight = 1.0;       ///< multiplies E_attract (Eq. 13: 1)
+  double plane_weight = 1.0e4;       ///< keeps mirror-plane vertices on the plane (ours; they are
+                                     ///< snapped exactly onto it afterwards)
+  MeshSolver solver = MeshSolver::SparseCholesky;  ///< see MeshSolver
+  int max_iterations = 100;          ///< solver iterations (Ceres max_num_iterations)
+  double function_tolerance = 1e-8;  ///< relative cost change that stops the solver (Ceres)
+  unsigned threads = 0;              ///< Ceres threads (0 = all); the result does not depend on it
+  bool valid(std::string* why) const;
+};
+
+/// Where the vertices of an open boundary are pulled (Eq. 13): one target point per entry.
+struct AttractTarget {
+  int vertex = -1;                                ///< vertex of the seamed mesh
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< a boundary-stroke point, mesh units
+};
+
+/// Extra constraints of E_mesh: open boundaries and the mirror plane.
+struct MeshConstraints {
+  std::vector<AttractTarget> attract;  ///< E_attract targets (App. D)
+  std::optional<Plane> plane;          ///< mirror plane, when the mesh is half of a symmetric one
+  std::vector<int> plane_vertices;     ///< vertices that must stay on `plane` (its boundary there)
+};
+
+/// Energies of E_mesh's terms, each a plain sum of squares (mesh units squared) with its weight.
+struct MeshEnergyTerms {
+  double project = 0.0;        ///< E_project (Eq. 8)
+  double regularize_2d = 0.0;  ///< gamma_2D sum w_v |Delta_2D v|^2 (Eq. 9)
+  double regularize_1d = 0.0;  ///< gamma_1D sum |Delta_1D v|^2 over seams and open boundaries (Eq. 9)
+  double attract = 0.0;        ///< E_attract (Eq. 13)
+  double plane = 0.0;          ///< mirror-plane penalty
+  double total() const { return project + regularize_2d + regularize_1d + attract + plane; }
+};
+
+/// What optimize_mesh() did (a digest of the Ceres summary).
+struct OptimizeSummary {
+  MeshEnergyTerms initial, final;
+  int iterations = 0;
+  std::string termination;  ///< Ceres' termination type and message
+  std::string solver;       ///< minimizer and linear solver used
+  bool usable = false;      ///< Ceres reports a usable solution
+  double seconds = 0.0;     ///< wall time of the solve
+};
+
+/// w_v of Eq. 9 for a vertex between two regions whose (unoriented) normals make `angle` (rad):
+/// 1 below smooth_angle, 0 above sharp_angle, linear in between.
+double seam_weight(double angle, const MeshEnergyOptions& options);
+
+/// w_v of Eq. 9 for every vertex: 1 for one label, 0 for three or more, seam_weight() of the angle
+/// between the two implicit normals at the vertex's current position otherwise.
+std::vector<double> regularization_weights(const LabeledMesh& mesh,
+                                           const std::vector<ImplicitModel>& models,
+                                           const MeshEnergyOptions& options);
+
+/// Minimises E_mesh over the vertex positions of `mesh`, in place (Eq. 7-9, 13):
+/// - E_project: each vertex, for each of its labels a, (1 / |labels|) dist_a(v)^2 with the Taubin
+///   distance f_a / |grad f_a| (Eq. 5, 8);
+/// - E_regularize: gamma_2D w_v |v - mean(1-ring)|^2 (graph Laplacian, Nealen et al. 2006) on
+///   interior vertices; gamma_1D |v - (s1 + s2) / 2|^2 on seam vertices with exactly two seam
+///   neighbours, and on open-boundary vertices along the boundary (ours: the 2D Laplacian of a
+///   boundary vertex only shrinks the mesh); on mirror-plane vertices the 2D Laplacian restricted
+///   to the plane, since their mirrored neighbours balance its normal part;
+/// - E_attract: attract_weight |v - p|^2 per target (Eq. 13);
+/// - plane_weight (n.v + d)^2 per plane vertex, then an exact snap onto the plane.
+/// Labels index `models`. Throws Error (Usage) on invalid options or indices, Error (Cancelled)
+/// through `progress`, Error (Processing) when the solver produces non-finite positions.
+OptimizeSummary optimize_mesh(LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
+                              const MeshConstraints& constraints, const MeshEnergyOptions& options,
+                              const Progress& progress = {});
+
+namespace detail {
+
+/// Eq. 8 residual of one vertex and one of its labels: sqrt(weight) f(x) / |grad f(x)|, the
+/// signed Taubin distance. Signed (not |f|) so that the residual is smooth across the surface;
+/// `gradient_floor` (f units per length) keeps it finite where grad f vanishes.
+struct ProjectionResidual {
+  const ImplicitModel* model = nullptr;
+  double sqrt_weight = 1.0;
+  double gradient_floor = 0.0;
+
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    const T f = model->evaluate(x);
+    T g[3];
+    model->evaluate_gradient(x, g);
+    using std::sqrt;
+    const T norm = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2] + T(gradient_floor * gradient_floor));
+    residual[0] = T(sqrt_weight) * f / norm;
+    return true;
+  }
+  /// The model must outlive the cost function.
+  static ceres::CostFunction* Create(const ImplicitModel& model, double weight, double gradient_floor);
+};
+
+/// Eq. 9 residual of one vertex: sqrt(weight) P (x_0 - mean(x_1..x_k)), the uniform graph
+/// Laplacian (Nealen et al. 2006) of the vertex x_0 with neighbours x_1..x_k (a 1-ring for
+/// Delta_2D, the two seam neighbours for Delta_1D). P projects onto a plane (mirror-plane
+/// vertices) or is the identity. Linear, so its Jacobian is constant and written out.
+class LaplacianCost : public ceres::CostFunction {
+ public:
+  LaplacianCost(int neighbors, double weight, const Eigen::Matrix3d& projection);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+  static ceres::CostFunction* Create(int neighbors, double weight,
+                                     const Eigen::Matrix3d& projection = Eigen::Matrix3d::Identity());
+
+ private:
+  int neighbors_;
+  Eigen::Matrix3d center_jacobian_;    // sqrt(weight) P
+  Eigen::Matrix3d neighbor_jacobian_;  // -sqrt(weight) P / k
+};
+
+/// Eq. 13 residual: sqrt(weight) (x - p), a boundary vertex to one of its boundary-stroke points.
+struct AttractResidual {
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  double sqrt_weight = 1.0;
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    for (int i = 0; i < 3; ++i) residual[i] = T(sqrt_weight) * (x[i] - T(target[i]));
+    return true;
+  }
+  static ceres::CostFunction* Create(const Eigen::Vector3d& target, double weight);
+};
+
+/// Mirror-plane residual: sqrt(weight) (n . x + d), the signed distance to the plane.
+struct PlaneResidual {
+  Plane plane;
+  double sqrt_weight = 1.0;
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    residual[0] = T(sqrt_weight) * (T(plane.normal.x()) * x[0] + T(plane.normal.y()) * x[1] +
+                                     T(plane.normal.z()) * x[2] + T(plane.offset));
+    return true;
+  }
+  static ceres::CostFunction* Create(const Plane& plane, double weight);
+};
+
+}  // namespace detail
+
+}  // namespace sketchsurf
