@@ -2,13 +2,20 @@
 // pipeline (association, PEARL with spectral initial models) on rounded proxies.
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "surfacing/segment/pearl.h"
+#include "surfacing/sketch/io/mesh_io.h"
 #include "tests/support/shapes.h"
 
 namespace sketchsurf {
@@ -64,12 +71,6 @@ Sketch sloppy(const Sketch& clean_sketch, unsigned seed) {
 TriMesh transformed(TriMesh mesh, double scale, const V3& t) {
   for (auto v : mesh.vertices()) mesh.set_point(v, to_openmesh(scale * to_eigen(mesh.point(v)) + t));
   return mesh;
-}
-
-std::vector<int> region_sizes(const Segmentation& s) {
-  std::vector<int> sizes(s.models.size(), 0);
-  for (int l : s.labels) ++sizes.at(l);
-  return sizes;
 }
 
 double mean_edge_length(const TriMesh& mesh) {
@@ -205,6 +206,56 @@ TEST(Segment, ScaleAndTranslationDoNotChangeTheLabeling) {
     EXPECT_NEAR(s.summary.energy.total, reference.summary.energy.total,
                 1e-5 * reference.summary.energy.total);
   }
+}
+
+int run_cli(const std::string& args) {
+  const int status = std::system((std::string(SKETCHSURF_CLI) + " " + args + " 2>/dev/null").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(SegmentCommand, WritesLabelledProxyAndReport) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("sketchsurf_segment_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  write_mesh(cube_proxy(), dir / "proxy.ply");
+  const std::string sketch = std::string(SKETCHSURF_TESTS_DIR) + "/data/cube.json";
+  ASSERT_EQ(run_cli("-q segment " + sketch + " --proxy " + (dir / "proxy.ply").string() + " -o " +
+                    (dir / "regions.ply").string() + " --report " + (dir / "report.json").string() +
+                    " --restarts 2 --seed 5"),
+            0);
+  MeshAttributes attributes;
+  const TriMesh labelled = read_mesh(dir / "regions.ply", &attributes);
+  EXPECT_EQ(labelled.n_vertices(), cube_proxy().n_vertices());
+  ASSERT_EQ(attributes.labels.size(), labelled.n_vertices());
+  EXPECT_EQ(std::set<int>(attributes.labels.begin(), attributes.labels.end()).size(), 6u);
+  ASSERT_EQ(attributes.colors.size(), labelled.n_vertices());
+  std::map<int, std::array<std::uint8_t, 3>> colour_of;
+  for (std::size_t v = 0; v < attributes.labels.size(); ++v) colour_of[attributes.labels[v]] = attributes.colors[v];
+  std::set<std::array<std::uint8_t, 3>> colours;
+  for (const auto& [l, c] : colour_of) colours.insert(c);
+  EXPECT_EQ(colours.size(), 6u);
+
+  std::ifstream in(dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["regions"], 6);
+  ASSERT_EQ(report["models"].size(), 6u);
+  for (const auto& m : report["models"]) EXPECT_EQ(m["degree"], 1);
+  for (const char* key : {"fidelity", "smoothness", "simplicity", "total"})
+    EXPECT_TRUE(report["energy"][key].is_number()) << key;
+  EXPECT_GE(report["iterations"].get<int>(), 1);
+  for (const char* key : {"association_s", "init_s", "segmentation_s"})
+    EXPECT_GE(report["timings"][key].get<double>(), 0.0) << key;
+  EXPECT_GT(report["peak_rss_mb"].get<double>(), 0.0);
+
+  // A missing proxy is an input error (exit code 3), a bad option a usage error (2); no output.
+  EXPECT_EQ(run_cli("segment " + sketch + " --proxy " + (dir / "missing.ply").string() + " -o " +
+                    (dir / "none.ply").string()),
+            3);
+  EXPECT_EQ(run_cli("segment " + sketch + " --proxy " + (dir / "proxy.ply").string() + " -o " +
+                    (dir / "none.ply").string() + " --epsilon -1"),
+            2);
+  EXPECT_FALSE(fs::exists(dir / "none.ply"));
+  fs::remove_all(dir);
 }
 
 }  // namespace
