@@ -152,9 +152,11 @@ TEST(Json, ErrorsNameTheFileThePathAndWhatWasExpected) {
 }
 
 TEST(Json, SyntaxErrorsGiveTheByteOffset) {
-  //                        0123456789012
+  // The offset is that of the first byte that cannot continue the document (0-based).
+  //                        01234567890
   const std::string text = R"({"format": @})";
-  expect_error([&] { read_text(text); }, ErrorKind::Input, {"t.json: byte 12", "syntax error"});
+  expect_error([&] { read_text(text); }, ErrorKind::Input,
+               {"t.json: byte 11: in format: unexpected character '@'; expected a value"});
   expect_error([] { read_text(document(R"({"points": [[0, 0, 0],]})")); }, ErrorKind::Input,
                {"byte", "in strokes[0].points"});
   expect_error([] { read_json("/nonexistent/dir/s.json"); }, ErrorKind::Input,

@@ -1,0 +1,178 @@
+// The sketchsurf executable: `info`, `convert`, exit codes, --help and --version.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "surfacing/sketch/io/sketch_io.h"
+#include "tests/support/shapes.h"
+#include "tests/unit/sketch/io_test_support.h"
+
+namespace sketchsurf {
+namespace {
+
+using testing::TempDir;
+
+struct CliResult {
+  int code = -1;
+  std::string out, err;
+};
+
+/// Runs the CLI with `args` (each single-quoted for the shell), capturing both streams.
+CliResult run_cli(const TempDir& dir, const std::vector<std::string>& args) {
+  std::string command = std::string("'") + SKETCHSURF_CLI + "'";
+  for (const auto& a : args) command += " '" + a + "'";
+  command += " > '" + (dir / "stdout.txt").string() + "' 2> '" + (dir / "stderr.txt").string() + "'";
+  const int status = std::system(command.c_str());
+  CliResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = testing::read_text(dir / "stdout.txt");
+  r.err = testing::read_text(dir / "stderr.txt");
+  std::filesystem::remove(dir / "stdout.txt");
+  std::filesystem::remove(dir / "stderr.txt");
+  return r;
+}
+
+Sketch example() {
+  Sketch sketch = testing::cylinder_sketch(0.3, 0.8, 5);
+  testing::transform(sketch, 1.0, Eigen::Vector3d(0.1, 1.2, -0.4));
+  testing::add_noise(sketch, 1e-4, 9);
+  return sketch;
+}
+
+const std::vector<std::string> kFormats = {".json", ".curves", ".obj", ".tilt"};
+
+TEST(Cli, InfoJsonMatchesTheLibraryForEveryFormat) {
+  TempDir dir;
+  for (const auto& ext : kFormats) {
+    SCOPED_TRACE(ext);
+    const auto file = dir / ("s" + ext);
+    write_sketch(example(), file);
+    const Sketch sketch = read_sketch(file);
+    const CliResult r = run_cli(dir, {"info", file.string(), "--json"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);  // one JSON object, nothing else on stdout
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(j["strokes"].get<std::size_t>(), sketch.strokes.size());
+    EXPECT_EQ(j["points"].get<std::size_t>(), sketch.point_count());
+    const BoundingBox box = sketch.bounding_box();
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(j["bbox_min"][c].get<double>(), box.min[c], 1e-12);
+      EXPECT_NEAR(j["bbox_max"][c].get<double>(), box.max[c], 1e-12);
+    }
+    EXPECT_NEAR(j["diagonal"].get<double>(), box.diagonal(), 1e-12);
+  }
+}
+
+TEST(Cli, InfoInPlainTextNamesTheCounts) {
+  TempDir dir;
+  write_sketch(example(), dir / "s.json");
+  const CliResult r = run_cli(dir, {"info", (dir / "s.json").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Sketch sketch = read_sketch(dir / "s.json");
+  EXPECT_NE(r.out.find("strokes       " + std::to_string(sketch.strokes.size())), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("points        " + std::to_string(sketch.point_count())), std::string::npos);
+}
+
+TEST(Cli, ConvertBetweenEveryPairOfFormats) {
+  TempDir dir;
+  const Sketch sketch = example();
+  for (const auto& from : kFormats) {
+    const auto in = dir / ("in" + from);
+    write_sketch(sketch, in);
+    const Sketch source = read_sketch(in);
+    for (const auto& to : writable_sketch_extensions()) {
+      SCOPED_TRACE(from + " -> " + to);
+      const auto out = dir / ("out" + to);
+      const CliResult r = run_cli(dir, {"convert", in.string(), out.string()});
+      ASSERT_EQ(r.code, 0) << r.err;
+      // .tilt keeps float32 positions; every other pair is exact.
+      testing::expect_same_points(source, read_sketch(out), to == ".tilt" ? 1e-6 : 0.0);
+      std::filesystem::remove(out);
+    }
+  }
+}
+
+TEST(Cli, UsageErrorsExitWith2) {
+  TempDir dir;
+  write_sketch(example(), dir / "s.json");
+  const std::string in = (dir / "s.json").string();
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"info", in, "--no-such-option"},
+           {"--no-such-option"},
+           {},
+           {"no-such-command"},
+           {"info"},
+           {"convert", in, (dir / "out.xyz").string()},
+           {"convert", in, in}}) {
+    std::string joined;
+    for (const auto& a : args) joined += a + " ";
+    SCOPED_TRACE(joined);
+    const CliResult r = run_cli(dir, args);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_FALSE(r.err.empty());
+  }
+  EXPECT_NE(run_cli(dir, {"convert", in, (dir / "out.xyz").string()}).err.find("out.xyz"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.xyz"));
+}
+
+TEST(Cli, MissingOrInvalidFilesExitWith3NamingTheFile) {
+  TempDir dir;
+  testing::write_text(dir / "broken.json", R"({"format": "sketchsurf-sketch", "version": 1, "strokes": [)");
+  testing::write_text(dir / "broken.curves", "v 3\n0 0 0\n");
+  testing::write_text(dir / "broken.tilt", "not a tilt file");
+  for (const std::string name : {"missing.json", "broken.json", "broken.curves", "broken.tilt"}) {
+    SCOPED_TRACE(name);
+    for (const std::string command : {"info", "convert"}) {
+      std::vector<std::string> args = {command, (dir / name).string()};
+      if (command == "convert") args.push_back((dir / "out.json").string());
+      const CliResult r = run_cli(dir, args);
+      EXPECT_EQ(r.code, 3) << r.err;
+      EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+      EXPECT_TRUE(r.out.empty()) << r.out;
+    }
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.json"));
+}
+
+TEST(Cli, HelpOnEveryCommandAndVersion) {
+  TempDir dir;
+  const CliResult help = run_cli(dir, {"--help"});
+  ASSERT_EQ(help.code, 0);
+  // The subcommands listed by the top-level help, each with its own --help.
+  std::istringstream lines(help.out);
+  std::string line;
+  std::vector<std::string> commands;
+  bool in_list = false;
+  while (std::getline(lines, line)) {
+    if (line.starts_with("Subcommands:")) {
+      in_list = true;
+      continue;
+    }
+    if (in_list && !line.empty() && line[0] == ' ') {
+      std::istringstream words(line);
+      std::string name;
+      words >> name;
+      commands.push_back(name);
+    } else if (in_list && !line.empty()) {
+      in_list = false;
+    }
+  }
+  EXPECT_NE(std::find(commands.begin(), commands.end(), "info"), commands.end()) << help.out;
+  EXPECT_NE(std::find(commands.begin(), commands.end(), "convert"), commands.end()) << help.out;
+  for (const auto& c : commands) {
+    const CliResult r = run_cli(dir, {c, "--help"});
+    EXPECT_EQ(r.code, 0) << c << ": " << r.err;
+    EXPECT_NE(r.out.find(c), std::string::npos) << r.out;
+  }
+  const CliResult version = run_cli(dir, {"--version"});
+  EXPECT_EQ(version.code, 0);
+  EXPECT_TRUE(version.out.starts_with("sketchsurf ")) << version.out;
+}
+
+}  // namespace
+}  // namespace sketchsurf
