@@ -97,6 +97,8 @@ bool FitOptions::valid(std::string* why) const {
   };
   if (!(std::isfinite(mu) && mu >= 0.0)) return fail("mu must be finite and >= 0");
   if (!(std::isfinite(lambda) && lambda >= 0.0)) return fail("lambda must be finite and >= 0");
+  if (alignment != NormalAlignment::Summed && alignment != NormalAlignment::PerVertex)
+    return fail("unknown normal alignment mode");
   if (!(std::isfinite(length_unit) && length_unit >= 0.0))
     return fail("length_unit must be finite and >= 0 (0 = the data's bounding-box diagonal)");
   return true;
@@ -178,8 +180,14 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
       for (int k = 1; k < t; ++k)
         align(i, k - 1) = normal_powers[i].directional(k, n) / deviations[k - 1];
     }
-    normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(align.transpose(), options.mu);
     rhs = options.mu * align.colwise().sum().transpose();
+    if (options.alignment == NormalAlignment::PerVertex) {
+      normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(align.transpose(), options.mu);
+    } else {
+      // App. B, Eq. 11-12: one summed row M_align = sum_v n_v^T grad X(v) / S.
+      const Eigen::VectorXd summed = align.colwise().sum().transpose();
+      normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(summed, options.mu);
+    }
   }
   normal_matrix.diagonal().array() += options.lambda;
   normal_matrix.triangularView<Eigen::StrictlyUpper>() =

@@ -158,11 +158,11 @@ TEST(Implicit, EvaluateWithCeresJetMatchesDoubles) {
   }
 }
 
-// Eq. 6 is not an interpolation. lambda |theta|^2 shrinks theta, and the alignment term asks for
-// n . grad f = 1 at every proxy vertex, which the exact polynomial satisfies only when |grad f| is
-// constant on the surface (plane, sphere, cylinder). So: with lambda -> 0 those are recovered
-// exactly; an ellipsoid is recovered exactly by the pure algebraic fit (mu = 0); with the paper's
-// weights the distance-like quadrics stay within 0.05% of the shape's size.
+// The fit is not an interpolation: lambda |theta|^2 shrinks theta. With App. B's summed alignment
+// row every quadric is recovered exactly as lambda -> 0 and closely with the paper's lambda = 1.
+// Eq. 6's per-vertex rows (the default) ask for n . grad f = 1 at every proxy vertex, which the
+// exact polynomial satisfies only when |grad f| is constant on the surface (plane, sphere,
+// cylinder): those are recovered exactly, an ellipsoid is not.
 constexpr double kTinyLambda = 1e-10;
 
 struct QuadricCase {
@@ -176,34 +176,50 @@ TEST(Implicit, FitsKnownQuadricsExactly) {
   const QuadricCase cases[] = {
       {"sphere", ellipsoid({0.3, -0.2, 0.5}, {0.7, 0.7, 0.7}), 0.7, true},
       {"cylinder", cylinder({0.5, 0.5, 0.5}, 0.4, 0.6), 0.4, true},
-      {"ellipsoid", ellipsoid({-1.0, 2.0, 0.0}, {1.0, 0.6, 0.4}), 0.4, false},
+      {"ellipsoid", ellipsoid({-1.0, 2.0, 0.0}, {1.0, 0.6, 0.4}), 1.0, false},
   };
   for (const QuadricCase& c : cases) {
     const Samples strokes = sample(c.surface, 300, 11);
     const Samples proxy = sample(c.surface, 150, 12);
-    FitOptions exact;
-    exact.lambda = kTinyLambda;
-    if (!c.distance_like) exact.mu = 0.0;
-    for (int degree = 2; degree <= 4; ++degree) {
-      const ImplicitModel model = fit(degree, strokes, proxy, exact);
-      EXPECT_LT(max_distance(model, strokes.points), 1e-8 * c.size) << c.name << " d" << degree;
-      // Near the surface the Taubin distance is the true distance to first order (for the
-      // algebraic fit only at degree 2: above, quadric x polynomial is also an exact fit).
-      const double delta = 1e-3 * c.size;
-      if (c.distance_like || degree == 2) {
-        EXPECT_LT(max_offset_error(model, proxy, delta), 0.01 * delta) << c.name << " d" << degree;
-      }
-      if (!c.distance_like) continue;
-      const ImplicitModel paper = fit(degree, strokes, proxy);
-      EXPECT_LT(max_distance(paper, strokes.points), 5e-4 * c.size) << c.name << " d" << degree;
-      // The fitted function grows along the proxy normals.
-      for (Eigen::Index i = 0; i < proxy.points.rows(); ++i) {
-        const Eigen::Vector3d x = proxy.points.row(i).transpose();
-        EXPECT_GT(model.gradient(x).dot(proxy.normals.row(i)), 0.0);
-        EXPECT_GT(paper.gradient(x).dot(proxy.normals.row(i)), 0.0);
+    for (NormalAlignment alignment : {NormalAlignment::Summed, NormalAlignment::PerVertex}) {
+      const bool summed = alignment == NormalAlignment::Summed;
+      if (!summed && !c.distance_like) continue;
+      FitOptions exact;
+      exact.alignment = alignment;
+      exact.lambda = kTinyLambda;
+      FitOptions paper;
+      paper.alignment = alignment;
+      for (int degree = 2; degree <= 4; ++degree) {
+        const std::string what = std::string(c.name) + (summed ? " summed" : " per-vertex") +
+                                 " degree " + std::to_string(degree);
+        const ImplicitModel model = fit(degree, strokes, proxy, exact);
+        EXPECT_LT(max_distance(model, strokes.points), 1e-8 * c.size) << what;
+        // Near the surface the Taubin distance is the true distance to first order. Above degree
+        // 2, quadric x polynomial is an exact fit too, whose extra factor bends the gradient: the
+        // agreement is looser (the per-vertex alignment keeps that factor nearly constant).
+        const double delta = 1e-3 * c.size;
+        if (degree == 2 || c.distance_like) {
+          EXPECT_LT(max_offset_error(model, proxy, delta), (degree == 2 ? 0.01 : 0.1) * delta)
+              << what;
+        }
+        // The paper's weights stay within 0.1% of the shape's size.
+        const ImplicitModel close = fit(degree, strokes, proxy, paper);
+        EXPECT_LT(max_distance(close, strokes.points), 1e-3 * c.size) << what;
+        // The fitted function grows along the proxy normals.
+        for (Eigen::Index i = 0; i < proxy.points.rows(); ++i) {
+          const Eigen::Vector3d x = proxy.points.row(i).transpose();
+          EXPECT_GT(close.gradient(x).dot(proxy.normals.row(i)), 0.0) << what;
+        }
       }
     }
   }
+  // Eq. 6's per-vertex form does not recover the ellipsoid: documented, and checked here so that
+  // a change of behaviour is noticed.
+  const Samples strokes = sample(cases[2].surface, 300, 11);
+  const Samples proxy = sample(cases[2].surface, 150, 12);
+  FitOptions per_vertex;
+  per_vertex.alignment = NormalAlignment::PerVertex;
+  EXPECT_GT(max_distance(fit(2, strokes, proxy, per_vertex), strokes.points), 0.02 * cases[2].size);
 }
 
 TEST(Implicit, FitsPlanesWithEveryDegree) {
@@ -219,8 +235,10 @@ TEST(Implicit, FitsPlanesWithEveryDegree) {
     EXPECT_TRUE(model.valid(nullptr));
     EXPECT_LT(max_distance(model, strokes.points), 1e-8) << "degree " << degree;
     // A plane's Taubin distance is exact where the fitted function is linear (degree 1) and
-    // first-order accurate otherwise.
-    EXPECT_LT(max_offset_error(model, proxy, 1e-2), degree == 1 ? 1e-8 : 1e-4) << degree;
+    // first-order accurate otherwise (loosely above degree 2: plane x polynomial fits too).
+    const double delta = 1e-2;
+    EXPECT_LT(max_offset_error(model, proxy, delta),
+              (degree == 1 ? 1e-6 : degree == 2 ? 0.01 : 0.2) * delta) << degree;
     const ImplicitModel paper = fit(degree, strokes, proxy);
     EXPECT_LT(max_distance(paper, strokes.points), 1e-2) << "degree " << degree;
   }
@@ -259,21 +277,26 @@ TEST(Implicit, FittedZeroSetIsInvariantUnderScalingAndTranslation) {
   const Samples proxy = sample(saddle, 100, 10);
   const Samples probes = sample(saddle, 50, 13);
 
-  for (int degree = 1; degree <= 4; ++degree) {
-    const ImplicitModel reference = fit(degree, strokes, proxy);
-    for (double s : {1e-3, 1e3}) {
-      const Eigen::RowVector3d t(5.0 * s, -3.0 * s, 1e4 * s);
-      Samples moved_strokes = strokes, moved_proxy = proxy;
-      moved_strokes.points = (strokes.points * s).rowwise() + t;
-      moved_proxy.points = (proxy.points * s).rowwise() + t;
-      const ImplicitModel moved = fit(degree, moved_strokes, moved_proxy);
-      for (Eigen::Index i = 0; i < probes.points.rows(); ++i)
-        for (double offset : {-0.05, 0.0, 0.05}) {
-          const Eigen::RowVector3d p = probes.points.row(i) + offset * probes.normals.row(i);
-          const double expected = reference.distance(p.transpose());
-          const double got = moved.distance((p * s + t).transpose()) / s;
-          EXPECT_NEAR(got, expected, 1e-6 * (1.0 + expected)) << "degree " << degree << " s " << s;
-        }
+  for (NormalAlignment alignment : {NormalAlignment::Summed, NormalAlignment::PerVertex}) {
+    for (int degree = 1; degree <= 4; ++degree) {
+      FitOptions options;
+      options.alignment = alignment;
+      const ImplicitModel reference = fit(degree, strokes, proxy, options);
+      for (double s : {1e-3, 1e3}) {
+        const Eigen::RowVector3d t(5.0 * s, -3.0 * s, 1e4 * s);
+        Samples moved_strokes = strokes, moved_proxy = proxy;
+        moved_strokes.points = (strokes.points * s).rowwise() + t;
+        moved_proxy.points = (proxy.points * s).rowwise() + t;
+        const ImplicitModel moved = fit(degree, moved_strokes, moved_proxy, options);
+        for (Eigen::Index i = 0; i < probes.points.rows(); ++i)
+          for (double offset : {-0.05, 0.0, 0.05}) {
+            const Eigen::RowVector3d p = probes.points.row(i) + offset * probes.normals.row(i);
+            const double expected = reference.distance(p.transpose());
+            const double got = moved.distance((p * s + t).transpose()) / s;
+            EXPECT_NEAR(got, expected, 1e-6 * (1.0 + expected))
+                << "degree " << degree << " s " << s;
+          }
+      }
     }
   }
 }

@@ -119,10 +119,12 @@ TEST(MaxFlow, AgreesWithBoostOnLargeGridGraphs) {
     for (int y = 0; y < side; ++y)
       for (int x = 0; x < side; ++x) {
         const int v = y * side + x;
-        if (x + 1 < side) p.edges.push_back({v, v + 1, random_capacity(rng, 0.1), random_capacity(rng, 0.1)});
-        if (y + 1 < side) p.edges.push_back({v, v + side, random_capacity(rng, 0.1), random_capacity(rng, 0.1)});
-        if (x + 1 < side && y + 1 < side)
-          p.edges.push_back({v, v + side + 1, random_capacity(rng, 0.3), random_capacity(rng, 0.3)});
+        auto add = [&](int w, double zero) {
+          p.edges.push_back({v, w, random_capacity(rng, zero), random_capacity(rng, zero)});
+        };
+        if (x + 1 < side) add(v + 1, 0.1);
+        if (y + 1 < side) add(v + side, 0.1);
+        if (x + 1 < side && y + 1 < side) add(v + side + 1, 0.3);
       }
     MaxFlow ours(0), reference(0);
     load(p, ours);
