@@ -10,10 +10,9 @@ namespace sketchsurf {
 namespace {
 
 // Valence of the vertex left when halfedge h (v0 -> v1) collapses: the two merge, losing the
-// edge between them and one duplicate per adjacent triangle.
-int merged_valence(const TriMesh& mesh, TriMesh::HalfedgeHandle h) {
-  return static_cast<int>(mesh.valence(mesh.from_vertex_handle(h)) +
-                          mesh.valence(mesh.to_vertex_handle(h))) - 4;
+// edge between them and one duplicate per adjacent triangle. `valence` is kept up to date.
+int merged_valence(const TriMesh& mesh, const std::vector<int>& valence, TriMesh::HalfedgeHandle h) {
+  return valence[mesh.from_vertex_handle(h).idx()] + valence[mesh.to_vertex_handle(h).idx()] - 4;
 }
 
 }  // namespace
@@ -57,26 +56,31 @@ SimplifiedGraph simplify_graph(const TriMesh& proxy_in, const StrokeGraph& graph
   auto movable = [&](TriMesh::VertexHandle v) {
     return graph.point_offsets[v.idx()] == graph.point_offsets[v.idx() + 1] && !mesh.is_boundary(v);
   };
+  std::vector<int> valence(nv);
+  for (auto v : mesh.vertices()) valence[v.idx()] = static_cast<int>(mesh.valence(v));
+  std::vector<char> can_move(nv);
+  for (auto v : mesh.vertices()) can_move[v.idx()] = movable(v);
   auto candidate = [&](TriMesh::HalfedgeHandle h) {
-    return !mesh.status(mesh.edge_handle(h)).deleted() && movable(mesh.from_vertex_handle(h)) &&
-           movable(mesh.to_vertex_handle(h)) && merged_valence(mesh, h) <= options.max_valence;
+    return !mesh.status(mesh.edge_handle(h)).deleted() && can_move[mesh.from_vertex_handle(h).idx()] &&
+           can_move[mesh.to_vertex_handle(h).idx()] &&
+           merged_valence(mesh, valence, h) <= options.max_valence;
   };
 
   using Entry = std::pair<int, int>;  // resulting valence, halfedge index
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
   for (auto h : mesh.halfedges())
-    if (candidate(h)) queue.emplace(merged_valence(mesh, h), h.idx());
+    if (candidate(h)) queue.emplace(merged_valence(mesh, valence, h), h.idx());
 
   std::vector<int> parent(nv);
   for (int v = 0; v < nv; ++v) parent[v] = v;
   SimplifiedGraph s;
   while (!queue.empty()) {
-    const auto [valence, index] = queue.top();
+    const auto [queued, index] = queue.top();
     queue.pop();
     const auto h = mesh.halfedge_handle(index);
     if (!candidate(h)) continue;
-    const int now = merged_valence(mesh, h);
-    if (now != valence) {
+    const int now = merged_valence(mesh, valence, h);
+    if (now != queued) {
       queue.emplace(now, index);
       continue;
     }
@@ -85,9 +89,11 @@ SimplifiedGraph simplify_graph(const TriMesh& proxy_in, const StrokeGraph& graph
     mesh.collapse(h);
     parent[v0.idx()] = v1.idx();
     ++s.collapses;
+    valence[v1.idx()] = static_cast<int>(mesh.valence(v1));
+    for (auto w : mesh.vv_range(v1)) valence[w.idx()] = static_cast<int>(mesh.valence(w));
     for (auto out : mesh.voh_range(v1)) {
       for (auto hh : {out, mesh.opposite_halfedge_handle(out)})
-        if (candidate(hh)) queue.emplace(merged_valence(mesh, hh), hh.idx());
+        if (candidate(hh)) queue.emplace(merged_valence(mesh, valence, hh), hh.idx());
     }
   }
 
