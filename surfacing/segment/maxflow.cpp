@@ -32,7 +32,6 @@ double boost_max_flow(const std::vector<int>& offsets, const std::vector<int>& h
   std::vector<double> arc_capacity;
   std::vector<int> arc_sister, arc_tail;
   std::vector<std::vector<std::pair<int, double>>> out(n + 2);  // (head, capacity) per extra arc
-  std::vector<std::vector<int>> partner(n + 2);
   for (int v = 0; v < n; ++v) {
     if (terminal[v] > 0.0) {
       out[s].push_back({v, terminal[v]});
@@ -64,7 +63,6 @@ double boost_max_flow(const std::vector<int>& offsets, const std::vector<int>& h
       arc_sister[p] = node_arc(sister[a], head[a]);
       arc_tail[p] = v;
     }
-  std::vector<int> seen(n + 2, 0);
   for (int v = 0; v < n + 2; ++v)
     for (int k = 0; k < static_cast<int>(out[v].size()); ++k) {
       const int p = extra_arc(v, k);
@@ -73,11 +71,11 @@ double boost_max_flow(const std::vector<int>& offsets, const std::vector<int>& h
       arc_tail[p] = v;
     }
   // Pair the terminal arcs: for node v, its single terminal arc pairs with the one at s or t.
-  std::vector<int> cursor_s(1, 0), cursor_t(1, 0);
+  int next_at_s = 0, next_at_t = 0;
   for (int v = 0; v < n; ++v) {
     if (terminal[v] == 0.0) continue;
     const int own = extra_arc(v, 0);
-    const int other = terminal[v] > 0.0 ? extra_arc(s, cursor_s[0]++) : extra_arc(t, cursor_t[0]++);
+    const int other = terminal[v] > 0.0 ? extra_arc(s, next_at_s++) : extra_arc(t, next_at_t++);
     arc_sister[own] = other;
     arc_sister[other] = own;
   }

@@ -12,8 +12,8 @@
 // - solve() returns that cost (= the max-flow value); on_source_side(v) reports the cut (nodes that
 //   could go either way are put on the sink side). Negative, NaN or infinite capacities and bad node
 //   indices throw sketchsurf::Error (Usage); on_source_side before solve() throws too.
-// - Solver: our Boykov-Kolmogorov implementation on compressed-sparse-row arrays (about 3x faster
-//   than Boost.Graph's on expansion graphs); solve(MaxFlowSolver::Boost) runs Boost.Graph's
+// - Solver: our Boykov-Kolmogorov implementation on compressed-sparse-row arrays (about 2.5x
+//   faster than Boost.Graph's on expansion graphs); solve(MaxFlowSolver::Boost) runs Boost.Graph's
 //   boykov_kolmogorov_max_flow instead, the reference the tests check ours against. clear() keeps
 //   the buffers, so one MaxFlow can be reused for many cuts without reallocating.
 
@@ -32,7 +32,8 @@ enum class MaxFlowSolver {
   Boost,   ///< Boost.Graph's boykov_kolmogorov_max_flow (reference)
 };
 
-/// s-t max-flow / min-cut on real capacities (Boykov-Kolmogorov via Boost.Graph). Nodes 0..n-1.
+/// s-t max-flow / min-cut on real capacities (Boykov-Kolmogorov: ours, or Boost.Graph's on
+/// request). Nodes 0..n-1.
 class MaxFlow {
  public:
   explicit MaxFlow(int nodes);
