@@ -173,9 +173,10 @@ Transform compose(const Transform& a, const Transform& b) {
   return {a.t + a.s * (a.q * b.t), a.q * b.q, a.s * b.s};
 }
 
-/// Open Brush frame -> right-handed metres: (-x, y, z) * 0.1. For rotations this is conjugation
-/// by diag(-1, 1, 1), which on a quaternion (x, y, z, w) gives (x, -y, -z, w); it is its own
-/// inverse, so the writer uses the same two functions.
+/// Open Brush's left-handed frame <-> our right-handed one: (x, y, z) -> (-x, y, z) (metres are a
+/// further factor 0.1). For rotations this is conjugation by diag(-1, 1, 1), which on a
+/// quaternion (x, y, z, w) gives (x, -y, -z, w). Both are their own inverse, so the writer uses
+/// the same two functions.
 Eigen::Vector3d flip_x(const Eigen::Vector3d& v) { return {-v.x(), v.y(), v.z()}; }
 Eigen::Quaterniond flip_rotation(const Eigen::Quaterniond& q) {
   return Eigen::Quaterniond(q.w(), q.x(), -q.y(), -q.z());
