@@ -399,6 +399,9 @@ Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOp
   for (auto& s : normalised.strokes)
     for (auto& p : s.points) p = (p - m.origin) / m.unit;
   TriMesh mesh = proxy;
+  mesh.garbage_collection();
+  if (mesh.n_vertices() != proxy.n_vertices())
+    throw Error::usage("the proxy mesh has deleted elements: call garbage_collection() first");
   for (auto v : mesh.vertices())
     mesh.set_point(v, to_openmesh((to_eigen(mesh.point(v)) - m.origin) / m.unit));
   AssociationOptions ao = options.association;
@@ -455,6 +458,7 @@ Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOp
   });
   for (auto& c : made)
     if (c) m.initial.push_back(std::move(c));
+  if (m.initial.empty()) throw Error::processing("no initial surface model could be fitted to the strokes");
   m.base_summary.initial_models = static_cast<int>(m.initial.size());
   m.base_summary.init_s = seconds_since(start);
   progress.update("initialisation", 1.0);

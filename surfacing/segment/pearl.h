@@ -83,9 +83,10 @@ struct Segmentation {
 class Segmenter {
  public:
   /// Normalises the inputs (unit diagonal), associates the strokes with the proxy (App. A),
-  /// simplifies the graph (App. C) and fits the initial models (§4.2). Throws Error (Usage) for
-  /// invalid options, Error (Processing) when the sketch has no usable stroke or the proxy no
-  /// triangle, Error (Cancelled) through `progress`.
+  /// simplifies the graph (App. C) and fits the initial models (§4.2). `proxy` must not hold
+  /// deleted elements (its vertex indices are those of the labels). Throws Error (Usage) for
+  /// invalid options or a proxy with deleted elements, Error (Processing) when the sketch has no
+  /// usable stroke or the proxy no triangle, Error (Cancelled) through `progress`.
   Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOptions& options = {},
             const Progress& progress = {});
   ~Segmenter();
