@@ -107,6 +107,7 @@ TEST(Cli, UsageErrorsExitWith2) {
            {"no-such-command"},
            {"info"},
            {"convert", in, (dir / "out.xyz").string()},
+           {"convert", (dir / "missing.json").string(), (dir / "out.xyz").string()},
            {"convert", in, in}}) {
     std::string joined;
     for (const auto& a : args) joined += a + " ";

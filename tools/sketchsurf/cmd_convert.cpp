@@ -1,5 +1,8 @@
 // sketchsurf convert IN OUT: any sketch reader to any sketch writer, by extension.
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -15,6 +18,16 @@ struct ConvertOptions {
 };
 
 void run_convert(const ConvertOptions& opt, const GlobalOptions& global) {
+  // A wrong output extension is a usage error before any time goes into reading.
+  std::string ext = std::filesystem::path(opt.output).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const auto writable = writable_sketch_extensions();
+  if (std::find(writable.begin(), writable.end(), ext) == writable.end()) {
+    std::string list;
+    for (const auto& w : writable) list += (list.empty() ? "" : ", ") + w;
+    throw Error::usage(opt.output + ": unknown sketch extension '" + ext + "' (writable: " + list + ")");
+  }
   Warnings warnings;
   Sketch sketch = read_sketch(opt.input, &warnings);
   print_warnings(global, opt.input, warnings);

@@ -558,6 +558,10 @@ class JsonParser {
       : in_(source), sax_(sax), name_(name) {}
 
   void parse() {
+    if (in_.peek() == 0xef) {  // a UTF-8 byte order mark, as some Windows editors write
+      for (int b : {0xef, 0xbb, 0xbf})
+        if (in_.get() != b) fail("unexpected byte; expected a JSON document");
+    }
     skip_space();
     value();
     while (!open_.empty()) {

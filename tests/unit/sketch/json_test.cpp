@@ -163,6 +163,18 @@ TEST(Json, SyntaxErrorsGiveTheByteOffset) {
                {"/nonexistent/dir/s.json", "cannot open"});
 }
 
+TEST(Json, StringsAreUnescapedAndCheckedForUtf8) {
+  const Sketch s = read_text("\xef\xbb\xbf" +  // a byte order mark is skipped
+                             document(R"({"points": [[0, 0, 0]], "brush": "a\"b\\c\u00e9\ud83d\ude00\n"})"));
+  EXPECT_EQ(s.strokes[0].brush, "a\"b\\c\u00e9\U0001F600\n");
+  expect_error([] { read_text(document(R"({"points": [], "brush": "\ud83d"})")); }, ErrorKind::Input,
+               {"strokes[0].brush", "surrogate"});
+  expect_error([] { read_text(document("{\"points\": [], \"brush\": \"\xc3\x28\"}")); },
+               ErrorKind::Input, {"strokes[0].brush", "invalid UTF-8"});
+  expect_error([] { read_text(document("{\"points\": [], \"brush\": \"a\tb\"}")); },
+               ErrorKind::Input, {"control character"});
+}
+
 TEST(Json, UnknownKeysAreIgnoredWithOneWarningEach) {
   Warnings warnings;
   const Sketch s = read_text(
