@@ -238,8 +238,9 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
 
   // E_regularize (Eq. 9).
   const std::vector<double> w = regularization_weights(lm, models, options);
-  std::vector<bool> on_plane(n, false);
+  std::vector<bool> on_plane(n, false), attracted(n, false);
   for (int v : constraints.plane_vertices) on_plane[v] = true;
+  for (const auto& t : constraints.attract) attracted[t.vertex] = true;
   Eigen::Matrix3d in_plane = Eigen::Matrix3d::Identity();
   if (constraints.plane) in_plane -= constraints.plane->normal * constraints.plane->normal.transpose();
   std::vector<double*> params;
@@ -247,7 +248,9 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     const int i = v.idx();
     const bool boundary = mesh.is_boundary(v);
     if (boundary && !on_plane[i]) {
-      // Open boundary: 1D Laplacian along the boundary.
+      // Open boundary: 1D Laplacian along the boundary, unless E_attract holds the vertex (the
+      // boundary strokes then give its shape, corners included).
+      if (attracted[i]) continue;
       params = {&x[3 * i]};
       for (auto h : v.outgoing_halfedges())
         if (h.is_boundary() || h.opp().is_boundary()) params.push_back(&x[3 * h.to().idx()]);

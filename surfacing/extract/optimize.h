@@ -31,11 +31,11 @@ struct MeshEnergyOptions {
   double gamma_1d = 500.0;           ///< weight of the 1D Laplacian along seams (Eq. 9)
   double smooth_angle = M_PI / 8.0;  ///< w_v = 1 when the region normals differ by less (rad, §4.3)
   double sharp_angle = M_PI / 3.0;   ///< w_v = 0 when they differ by more (rad, §4.3)
-  double attract_weight = 1.0;       ///< multiplies E_attract (Eq. 13: 1)
+  double attract_weight = 100.0;     ///< multiplies E_attract (Eq. 13: 1)
   double plane_weight = 1.0e4;       ///< keeps mirror-plane vertices on the plane (ours; they are
                                      ///< snapped exactly onto it afterwards)
-  MeshSolver solver = MeshSolver::SparseCholesky;  ///< see MeshSolver
-  int max_iterations = 100;          ///< solver iterations (Ceres max_num_iterations)
+  MeshSolver solver = MeshSolver::Lbfgs;  ///< see MeshSolver
+  int max_iterations = 2000;         ///< solver iterations (Ceres max_num_iterations)
   double function_tolerance = 1e-8;  ///< relative cost change that stops the solver (Ceres)
   unsigned threads = 0;              ///< Ceres threads (0 = all); the result does not depend on it
   bool valid(std::string* why) const;
@@ -89,8 +89,9 @@ std::vector<double> regularization_weights(const LabeledMesh& mesh,
 ///   distance f_a / |grad f_a| (Eq. 5, 8);
 /// - E_regularize: gamma_2D w_v |v - mean(1-ring)|^2 (graph Laplacian, Nealen et al. 2006) on
 ///   interior vertices; gamma_1D |v - (s1 + s2) / 2|^2 on seam vertices with exactly two seam
-///   neighbours, and on open-boundary vertices along the boundary (ours: the 2D Laplacian of a
-///   boundary vertex only shrinks the mesh); on mirror-plane vertices the 2D Laplacian restricted
+///   neighbours, and on open-boundary vertices without an attraction target along the boundary
+///   (ours: the 2D Laplacian of a boundary vertex only shrinks the mesh, and the 1D one rounds the
+///   corners that the boundary strokes draw); on mirror-plane vertices the 2D Laplacian restricted
 ///   to the plane, since their mirrored neighbours balance its normal part;
 /// - E_attract: attract_weight |v - p|^2 per target (Eq. 13);
 /// - plane_weight (n.v + d)^2 per plane vertex, then an exact snap onto the plane.

@@ -124,15 +124,20 @@ TrimResult trim_open_surface(const TriMesh& proxy, const Sketch& sketch,
       inside[v] = !attached.points_of(v).empty() &&
                   from_boundary[v] > options.inside_distance * diagonal;
   }
-  std::vector<Eigen::Vector3d> stroke_points;
-  for (const Stroke& s : sketch.strokes)
-    if (!s.ignored) stroke_points.insert(stroke_points.end(), s.points.begin(), s.points.end());
-  const NearPoints near_strokes(stroke_points, options.outside_distance * diagonal);
+  // Outside: the proxy's own boundary (not the mirror cut); a closed proxy has none, then the
+  // vertices far from every stroke.
   for (auto v : proxy.vertices()) {
     const Eigen::Vector3d p = to_eigen(proxy.point(v));
     const bool on_mirror = mirror && std::abs(mirror->signed_distance(p)) <= plane_tolerance;
-    outside[v.idx()] = !inside[v.idx()] &&
-                       ((proxy.is_boundary(v) && !on_mirror) || !near_strokes.near(p));
+    outside[v.idx()] = !inside[v.idx()] && proxy.is_boundary(v) && !on_mirror;
+  }
+  if (std::find(outside.begin(), outside.end(), 1) == outside.end()) {
+    std::vector<Eigen::Vector3d> stroke_points;
+    for (const Stroke& s : sketch.strokes)
+      if (!s.ignored) stroke_points.insert(stroke_points.end(), s.points.begin(), s.points.end());
+    const NearPoints near_strokes(stroke_points, options.outside_distance * diagonal);
+    for (auto v : proxy.vertices())
+      outside[v.idx()] = !inside[v.idx()] && !near_strokes.near(to_eigen(proxy.point(v)));
   }
   result.sink_seeds = std::count(inside.begin(), inside.end(), 1);
   result.source_seeds = std::count(outside.begin(), outside.end(), 1);

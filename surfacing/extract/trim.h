@@ -19,9 +19,9 @@ namespace sketchsurf {
 struct TrimOptions {
   double inside_distance = 0.03;   ///< vertices with stroke points geodesically farther than this
                                    ///< from the boundary strokes are inside (sink seeds, App. D)
-  double outside_distance = 0.05;  ///< vertices farther than this from every stroke point are
-                                   ///< outside (source seeds, with the proxy's own boundary; lets
-                                   ///< a closed proxy be trimmed) (ours)
+  double outside_distance = 0.1;   ///< on a closed proxy (no boundary of its own), vertices
+                                   ///< farther than this from every stroke point are outside
+                                   ///< (source seeds) (ours)
   double attract_distance = 0.03;  ///< open-boundary vertices farther than this from every boundary
                                    ///< stroke are not attracted (Eq. 13 targets) (ours)
   bool valid(std::string* why) const;
@@ -41,7 +41,8 @@ struct TrimResult {
 /// App. D: projects the boundary strokes of `sketch` (Stroke::boundary, not ignored) onto `proxy`
 /// (association of App. A); edges they cross cost 0 to cut, every other edge its length. Source
 /// (outside): the proxy's boundary vertices, except those within `plane_tolerance` (mesh units) of
-/// the mirror plane, plus vertices farther than outside_distance from every stroke point. Sink
+/// the mirror plane; when there are none (closed proxy), vertices farther than outside_distance
+/// from every stroke point. Sink
 /// (inside): vertices with stroke points of non-boundary strokes, geodesically farther than
 /// inside_distance from the boundary strokes. Faces with an outside corner are removed, then the
 /// connected parts without inside vertices.

@@ -1,0 +1,188 @@
+// The final surface on generated sketches with known answers (issue 4 "Done when"): a cube on a
+// rounded proxy, a cylinder with caps, an open sheet with boundary strokes, a mirrored cube.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "surfacing/extract/extract.h"
+#include "surfacing/segment/pearl.h"
+#include "tests/support/shapes.h"
+#include "tests/unit/extract/fixtures.h"
+
+namespace sketchsurf {
+namespace {
+
+const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);
+
+/// Closed 2-manifold: every edge has two faces, Euler characteristic 2 (a sphere).
+void expect_closed_sphere(const TriMesh& mesh) {
+  std::size_t boundary = 0;
+  for (auto e : mesh.edges()) boundary += mesh.is_boundary(e);
+  EXPECT_EQ(boundary, 0u);
+  for (auto v : mesh.vertices()) EXPECT_TRUE(mesh.is_manifold(v));
+  EXPECT_EQ(long(mesh.n_vertices()) - long(mesh.n_edges()) + long(mesh.n_faces()), 2);
+}
+
+/// Angle (degrees) between the normals of the two faces of an interior edge.
+double dihedral_degrees(const TriMesh& mesh, TriMesh::EdgeHandle e) {
+  const auto n0 = mesh.calc_face_normal(mesh.face_handle(mesh.halfedge_handle(e, 0)));
+  const auto n1 = mesh.calc_face_normal(mesh.face_handle(mesh.halfedge_handle(e, 1)));
+  return std::acos(std::clamp(OpenMesh::dot(n0, n1), -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+/// The cube checks of the issue on a result whose labels are the box faces.
+void expect_sharp_cube(const ExtractedSurface& out) {
+  const double diagonal = 2.0 * kHalf.norm();
+  double worst = 0.0, bulge = 0.0;
+  Eigen::Vector3d worst_at = Eigen::Vector3d::Zero();
+  for (auto v : out.mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(out.mesh.point(v));
+    if (testing::box_distance(p, kHalf) > worst) worst_at = p;
+    worst = std::max(worst, testing::box_distance(p, kHalf));
+    if (!out.sharp[v.idx()]) {
+      const int l = out.labels[v.idx()];
+      bulge = std::max(bulge, std::abs(std::abs(p[l / 2]) - kHalf[l / 2]));
+    }
+  }
+  EXPECT_LT(worst, 0.003 * diagonal) << "at " << worst_at.transpose();
+  EXPECT_LT(bulge, 0.003 * diagonal);
+  // Seam edges: both ends sharp; their faces meet at 90 degrees (edges at a cube corner excepted:
+  // there the seam turns).
+  int seam_edges = 0;
+  double worst_angle = 0.0;
+  for (auto e : out.mesh.edges()) {
+    const int a = e.v0().idx(), b = e.v1().idx();
+    if (!out.sharp[a] || !out.sharp[b]) continue;
+    const Eigen::Vector3d pa = to_eigen(out.mesh.point(e.v0())), pb = to_eigen(out.mesh.point(e.v1()));
+    const Eigen::Vector3d mid = 0.5 * (pa + pb);
+    // Not within 2% of a corner.
+    if ((mid.cwiseAbs() - kHalf).cwiseAbs().maxCoeff() < 0.02) continue;
+    ++seam_edges;
+    if (std::abs(dihedral_degrees(out.mesh, e) - 90.0) > worst_angle) worst_at = mid;
+    worst_angle = std::max(worst_angle, std::abs(dihedral_degrees(out.mesh, e) - 90.0));
+  }
+  EXPECT_GT(seam_edges, 12 * 8);
+  EXPECT_LT(worst_angle, 5.0) << "at " << worst_at.transpose();
+}
+
+TEST(Surface, CubeOnARoundedProxyWithKnownRegions) {
+  const TriMesh proxy = testing::rounded_box_mesh(4, kHalf, 0.1);
+  const Sketch sketch = testing::cube_sketch();
+  const ExtractedSurface out = extract(proxy, testing::box_labels(proxy, kHalf),
+                                       testing::box_models(kHalf), sketch, {});
+  EXPECT_TRUE(out.summary.optimization.usable) << out.summary.optimization.termination;
+  expect_closed_sphere(out.mesh);
+  expect_sharp_cube(out);
+  EXPECT_LT(out.summary.stroke_distance.median, 0.001);
+  EXPECT_LT(out.summary.stroke_distance.max, 0.01);
+}
+
+TEST(Surface, CylinderWithCapsHasSharpRimsAndARoundSide) {
+  const double radius = 0.5, half_height = 0.5;
+  const TriMesh proxy = testing::rounded_cylinder_mesh(4, radius, half_height, 0.08);
+  // Labels: 0 side, 1 top, 2 bottom, by which surface the vertex is relatively closest to.
+  std::vector<int> labels;
+  for (auto v : proxy.vertices()) {
+    const Eigen::Vector3d p = to_eigen(proxy.point(v));
+    const double rho = std::hypot(p.x(), p.y());
+    labels.push_back(rho / radius > std::abs(p.z()) / half_height ? 0 : (p.z() > 0 ? 1 : 2));
+  }
+  ImplicitModel side;  // x^2 + y^2 - r^2
+  side.degree = 2;
+  side.coefficients = Eigen::VectorXd::Zero(10);
+  side.coefficients << -radius * radius, 0, 0, 0, 1, 0, 0, 1, 0, 0;
+  const std::vector<ImplicitModel> models{side, testing::plane_model({0, 0, 1}, half_height),
+                                          testing::plane_model({0, 0, -1}, half_height)};
+  const ExtractedSurface out = extract(proxy, labels, models, testing::cylinder_sketch(radius, 2 * half_height), {});
+  expect_closed_sphere(out.mesh);
+  double radius_error = 0.0, rim_error = 0.0;
+  std::size_t rims = 0;
+  for (auto v : out.mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(out.mesh.point(v));
+    const double rho = std::hypot(p.x(), p.y());
+    if (out.labels[v.idx()] == 0 && !out.sharp[v.idx()])
+      radius_error = std::max(radius_error, std::abs(rho - radius) / radius);
+    if (out.sharp[v.idx()]) {
+      ++rims;
+      rim_error = std::max(rim_error, std::hypot(rho - radius, std::abs(p.z()) - half_height));
+    }
+  }
+  EXPECT_LT(radius_error, 0.01);
+  EXPECT_GT(rims, 60u);
+  EXPECT_LT(rim_error, 0.01);
+}
+
+/// An open grid over [-extent, extent]^2 following z = c (x^2 - y^2) + lift.
+TriMesh saddle_grid(double extent, int n, double curvature, double lift) {
+  Eigen::MatrixX3d V((n + 1) * (n + 1), 3);
+  Eigen::MatrixX3i F(2 * n * n, 3);
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double x = -extent + 2 * extent * i / n, y = -extent + 2 * extent * j / n;
+      V.row(i * (n + 1) + j) << x, y, curvature * (x * x - y * y) + lift;
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = a + n + 1;
+      F.row(2 * (i * n + j)) << a, b, b + 1;
+      F.row(2 * (i * n + j) + 1) << a, b + 1, a + 1;
+    }
+  return mesh_from_matrices(V, F);
+}
+
+TEST(Surface, OpenSheetIsTrimmedAlongItsBoundaryStrokes) {
+  const double half = 0.5, curvature = 0.4;
+  const Sketch sketch = testing::sheet_sketch(half, curvature);
+  const TriMesh proxy = saddle_grid(0.7, 70, curvature, 0.01);
+  ImplicitModel saddle;  // z - c x^2 + c y^2
+  saddle.degree = 2;
+  saddle.coefficients = Eigen::VectorXd::Zero(10);
+  saddle.coefficients << 0, 0, 0, 1, -curvature, 0, 0, curvature, 0, 0;
+  const ExtractedSurface out =
+      extract(proxy, std::vector<int>(proxy.n_vertices(), 0), {saddle}, sketch, {});
+  EXPECT_TRUE(out.summary.open);
+  EXPECT_GT(out.summary.trimmed_faces, 0u);
+  const double diagonal = sketch.bounding_box().diagonal();
+  // Boundary on the boundary strokes: every boundary vertex within 1% of the diagonal of the
+  // square [-half, half]^2 (in x, y) ...
+  std::size_t boundary = 0;
+  for (auto v : out.mesh.vertices()) {
+    if (!out.mesh.is_boundary(v)) continue;
+    ++boundary;
+    const Eigen::Vector3d p = to_eigen(out.mesh.point(v));
+    const double to_square = std::abs(std::max(std::abs(p.x()), std::abs(p.y())) - half);
+    EXPECT_LT(to_square, 0.01 * diagonal) << p.transpose();
+    EXPECT_NEAR(p.z(), curvature * (p.x() * p.x() - p.y() * p.y()), 0.003 * diagonal);
+  }
+  EXPECT_GT(boundary, 100u);
+  // ... and no shrinkage: every boundary-stroke point is within 1% of the surface.
+  Sketch strokes_on_border;
+  for (const Stroke& s : sketch.strokes)
+    if (s.boundary) strokes_on_border.strokes.push_back(s);
+  EXPECT_LT(stroke_distance(out.mesh, strokes_on_border, diagonal).max, 0.01);
+}
+
+TEST(Surface, MirroredCubeIsSymmetricWithoutGapOrDoubleFaces) {
+  Plane plane;  // x = 0, keep x >= 0
+  Sketch sketch = testing::cube_sketch();
+  sketch.mirror = plane;
+  const ClippedMesh half = clip_to_half_space(testing::rounded_box_mesh(4, kHalf, 0.1), plane, 1e-9);
+  const ExtractedSurface out = extract(half.mesh, testing::box_labels(half.mesh, kHalf),
+                                       testing::box_models(kHalf), half_sketch(sketch, plane), {});
+  EXPECT_TRUE(out.summary.mirrored);
+  expect_closed_sphere(out.mesh);
+  expect_sharp_cube(out);
+  double worst = 0.0;
+  for (auto v : out.mesh.vertices()) {
+    const Eigen::Vector3d r = plane.reflect(to_eigen(out.mesh.point(v)));
+    double best = std::numeric_limits<double>::infinity();
+    for (auto u : out.mesh.vertices()) best = std::min(best, (to_eigen(out.mesh.point(u)) - r).norm());
+    worst = std::max(worst, best);
+  }
+  EXPECT_LT(worst, 1e-9);
+}
+
+}  // namespace
+}  // namespace sketchsurf
