@@ -207,32 +207,55 @@ bool VipssOptions::valid(std::string* why) const {
   return true;
 }
 
-HermiteRbf::HermiteRbf(const Eigen::MatrixX3d& centers, const Eigen::VectorXd& a,
-                       const Eigen::MatrixX3d& b, const Eigen::Vector4d& c)
-    : cx_(centers.col(0)), cy_(centers.col(1)), cz_(centers.col(2)), a_(a), bx_(b.col(0)),
-      by_(b.col(1)), bz_(b.col(2)), c_(c) {}
+namespace {
 
-double HermiteRbf::value(const Eigen::Vector3d& x) const {
-  // f = sum a r^3 + 3 r b . (x_j - x) + c0 + c . x
-  const Eigen::ArrayXd dx = cx_ - x.x(), dy = cy_ - x.y(), dz = cz_ - x.z();
-  const Eigen::ArrayXd r = (dx.square() + dy.square() + dz.square()).sqrt();
-  return (r * (a_ * r.square() + 3.0 * (bx_ * dx + by_ * dy + bz_ * dz))).sum() + c_[0] +
-         c_.tail<3>().dot(x);
+// Centres are processed in fixed-size blocks (no heap traffic, vectorised); the arrays are padded
+// to a whole number of blocks with zero-coefficient centres, which contribute exactly 0.
+constexpr Eigen::Index kRbfBlock = 16;
+using RbfBlock = Eigen::Array<double, kRbfBlock, 1>;
+
+Eigen::ArrayXd padded(const Eigen::ArrayXd& v, double fill) {
+  const Eigen::Index n = (v.size() + kRbfBlock - 1) / kRbfBlock * kRbfBlock;
+  Eigen::ArrayXd out = Eigen::ArrayXd::Constant(n, fill);
+  out.head(v.size()) = v;
+  return out;
 }
 
+}  // namespace
+
+HermiteRbf::HermiteRbf(const Eigen::MatrixX3d& centers, const Eigen::VectorXd& a,
+                       const Eigen::MatrixX3d& b, const Eigen::Vector4d& c)
+    : size_(static_cast<std::size_t>(centers.rows())),
+      cx_(padded(centers.col(0), centers.rows() ? centers(0, 0) : 0.0)),
+      cy_(padded(centers.col(1), centers.rows() ? centers(0, 1) : 0.0)),
+      cz_(padded(centers.col(2), centers.rows() ? centers(0, 2) : 0.0)), a_(padded(a, 0.0)),
+      bx_(padded(b.col(0), 0.0)), by_(padded(b.col(1), 0.0)), bz_(padded(b.col(2), 0.0)), c_(c) {}
+
+double HermiteRbf::value(const Eigen::Vector3d& x) const { return value_gradient(x, nullptr); }
+
 double HermiteRbf::value_gradient(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const {
-  // With e = x_j - x: grad (a r^3) = -3 a r e; grad (3 r b.e) = -3 (b.e) e / r - 3 r b.
-  const Eigen::ArrayXd dx = cx_ - x.x(), dy = cy_ - x.y(), dz = cz_ - x.z();
-  const Eigen::ArrayXd r = (dx.square() + dy.square() + dz.square()).sqrt();
-  const Eigen::ArrayXd be = bx_ * dx + by_ * dy + bz_ * dz;
-  const double f = (r * (a_ * r.square() + 3.0 * be)).sum() + c_[0] + c_.tail<3>().dot(x);
-  if (gradient) {
-    const Eigen::ArrayXd s = -3.0 * (a_ * r + (r > 1e-12).select(be / r, 0.0));
-    *gradient << (s * dx - 3.0 * r * bx_).sum(), (s * dy - 3.0 * r * by_).sum(),
-        (s * dz - 3.0 * r * bz_).sum();
-    *gradient += c_.tail<3>();
+  // f = sum a r^3 + 3 r b . e + c0 + c . x with e = x_j - x, and
+  // grad (a r^3) = -3 a r e; grad (3 r b . e) = -3 (b . e) e / r - 3 r b.
+  RbfBlock f = RbfBlock::Zero(), gx = RbfBlock::Zero(), gy = RbfBlock::Zero(),
+           gz = RbfBlock::Zero();
+  for (Eigen::Index j = 0; j < cx_.size(); j += kRbfBlock) {
+    const RbfBlock dx = cx_.segment<kRbfBlock>(j) - x.x();
+    const RbfBlock dy = cy_.segment<kRbfBlock>(j) - x.y();
+    const RbfBlock dz = cz_.segment<kRbfBlock>(j) - x.z();
+    const RbfBlock r = (dx.square() + dy.square() + dz.square()).sqrt();
+    const RbfBlock a = a_.segment<kRbfBlock>(j), bx = bx_.segment<kRbfBlock>(j),
+                   by = by_.segment<kRbfBlock>(j), bz = bz_.segment<kRbfBlock>(j);
+    const RbfBlock be = bx * dx + by * dy + bz * dz;
+    f += r * (a * r.square() + 3.0 * be);
+    if (gradient) {
+      const RbfBlock s = -3.0 * (a * r + (r > 1e-12).select(be / r, 0.0));
+      gx += s * dx - 3.0 * r * bx;
+      gy += s * dy - 3.0 * r * by;
+      gz += s * dz - 3.0 * r * bz;
+    }
   }
-  return f;
+  if (gradient) *gradient = Eigen::Vector3d(gx.sum(), gy.sum(), gz.sum()) + c_.tail<3>();
+  return f.sum() + c_[0] + c_.tail<3>().dot(x);
 }
 
 void HermiteRbf::values(const Eigen::MatrixX3d& points, Eigen::VectorXd& out,

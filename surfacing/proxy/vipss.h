@@ -31,7 +31,7 @@ class HermiteRbf {
   HermiteRbf(const Eigen::MatrixX3d& centers, const Eigen::VectorXd& a, const Eigen::MatrixX3d& b,
              const Eigen::Vector4d& c);
 
-  std::size_t size() const { return static_cast<std::size_t>(cx_.size()); }
+  std::size_t size() const { return size_; }
   double value(const Eigen::Vector3d& x) const;
   /// f(x) and its gradient.
   double value_gradient(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const;
@@ -39,7 +39,8 @@ class HermiteRbf {
   void values(const Eigen::MatrixX3d& points, Eigen::VectorXd& values, unsigned threads) const;
 
  private:
-  // Structure of arrays so that the O(n) sum per point vectorises.
+  // Structure of arrays so that the O(n) sum per point vectorises (padded, see vipss.cpp).
+  std::size_t size_ = 0;
   Eigen::ArrayXd cx_, cy_, cz_, a_, bx_, by_, bz_;
   Eigen::Vector4d c_ = Eigen::Vector4d::Zero();
 };

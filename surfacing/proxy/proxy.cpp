@@ -1,0 +1,289 @@
+#include "surfacing/proxy/proxy.h"
+
+#include <Eigen/Eigenvalues>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "surfacing/error.h"
+#include "surfacing/parallel.h"
+#include "surfacing/proxy/attract.h"
+#include "surfacing/proxy/polygonize.h"
+#include "surfacing/proxy/remesh.h"
+#include "surfacing/proxy/sampling.h"
+
+namespace sketchsurf {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// The unit-diagonal frame of the strokes that are not ignored: x_unit = (x - centre) * scale.
+struct Frame {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double scale = 1.0;
+};
+
+Frame stroke_frame(const Sketch& sketch) {
+  BoundingBox box;
+  for (const auto& s : sketch.strokes)
+    if (!s.ignored)
+      for (const auto& p : s.points)
+        if (p.allFinite()) box.extend(p);
+  if (box.empty() || !(box.diagonal() > 0.0))
+    throw Error::processing("the sketch has no strokes to build a proxy from (all empty, ignored "
+                            "or at a single point)");
+  return {0.5 * (box.min + box.max), 1.0 / box.diagonal()};
+}
+
+// The strokes that are not ignored, geometry only, in the unit frame; non-finite points dropped.
+Sketch unit_strokes(const Sketch& sketch, const Frame& frame) {
+  Sketch out;
+  for (const auto& s : sketch.strokes) {
+    if (s.ignored) continue;
+    Stroke t;
+    for (const auto& p : s.points)
+      if (p.allFinite()) t.points.push_back((p - frame.centre) * frame.scale);
+    if (!t.points.empty()) out.strokes.push_back(std::move(t));
+  }
+  return out;
+}
+
+void transform_mesh(TriMesh& mesh, const Eigen::Vector3d& shift, double scale) {
+  for (const auto v : mesh.vertices())
+    mesh.set_point(v, to_openmesh((to_eigen(mesh.point(v)) - shift) * scale));
+  mesh.update_normals();
+}
+
+// Refuses samples that cannot enclose a volume: too few, or (nearly) on a plane or a line.
+void check_encloses(const Eigen::MatrixX3d& x) {
+  if (x.rows() < 10)
+    throw Error::processing("the strokes are too short to build a proxy surface (" +
+                            std::to_string(x.rows()) + " distinct sample points, need 10)");
+  const Eigen::MatrixX3d c = x.rowwise() - x.colwise().mean();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(c.transpose() * c / x.rows());
+  const double thickness = std::sqrt(std::max(0.0, eig.eigenvalues()[0]));
+  if (thickness < 0.005)
+    throw Error::processing(
+        "the strokes lie in a plane (or on a line): they do not enclose a surface, so no proxy "
+        "can be built automatically; draw strokes around the shape or give a proxy mesh");
+}
+
+void fill_topology(const TriMesh& mesh, ProxyReport& report) {
+  report.vertices = mesh.n_vertices();
+  report.faces = mesh.n_faces();
+  report.topology = mesh_topology(mesh);
+}
+
+}  // namespace
+
+bool ProxyOptions::valid(std::string* why) const {
+  auto fail = [&](const std::string& msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (points < 10) return fail("proxy points must be at least 10");
+  if (points > 20000) return fail("proxy points above 20000 need too much memory (n^2)");
+  if (!(lambda >= 0.0) || !std::isfinite(lambda)) return fail("proxy lambda must be >= 0");
+  if (!(edge > 1e-4 && edge < 0.5)) return fail("proxy edge must be in (1e-4, 0.5) of the diagonal");
+  if (!(cell > 1e-3 && cell < 0.5)) return fail("proxy cell must be in (1e-3, 0.5) of the diagonal");
+  if (!(padding >= 0.0 && padding < 1.0)) return fail("proxy padding must be in [0, 1)");
+  if (!(sample_spacing > 0.0 && sample_spacing < 0.1))
+    return fail("proxy sample_spacing must be in (0, 0.1)");
+  if (remesh_iterations < 0) return fail("proxy remesh_iterations must be >= 0");
+  if (projection_steps < 0) return fail("proxy projection_steps must be >= 0");
+  if (!(attract_weight > 0.0)) return fail("proxy attract_weight must be > 0");
+  if (attract_rounds < 1) return fail("proxy attract_rounds must be >= 1");
+  if (!(max_proxy_distance > 0.0)) return fail("proxy max_proxy_distance must be > 0");
+  return true;
+}
+
+MeshTopology mesh_topology(const TriMesh& mesh) {
+  MeshTopology t;
+  const std::size_t nv = mesh.n_vertices();
+  std::vector<std::size_t> parent(nv);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::size_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (const auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const std::size_t a = find(mesh.from_vertex_handle(h).idx()),
+                      b = find(mesh.to_vertex_handle(h).idx());
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+  // Per component (keyed by root): V, E, F, border loops.
+  std::vector<long> v(nv, 0), e(nv, 0), f(nv, 0), b(nv, 0);
+  for (const auto vh : mesh.vertices()) ++v[find(vh.idx())];
+  for (const auto eh : mesh.edges()) ++e[find(mesh.from_vertex_handle(mesh.halfedge_handle(eh, 0)).idx())];
+  for (const auto fh : mesh.faces()) ++f[find(fh.halfedge().from().idx())];
+  std::vector<bool> seen(mesh.n_halfedges(), false);
+  for (const auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
+    ++t.boundary_loops;
+    ++b[find(mesh.from_vertex_handle(h).idx())];
+    auto g = h;
+    do {
+      seen[g.idx()] = true;
+      g = mesh.next_halfedge_handle(g);
+    } while (g != h && !seen[g.idx()]);
+  }
+  for (std::size_t r = 0; r < nv; ++r) {
+    if (find(r) != r || v[r] == 0) continue;
+    ++t.components;
+    const long chi = v[r] - e[r] + f[r];
+    t.euler += chi;
+    t.genus += (2 - chi - b[r]) / 2;
+  }
+  return t;
+}
+
+TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Progress& progress,
+                   ProxyReport* report) {
+  std::string why;
+  if (!options.valid(&why)) throw Error::usage(why);
+  ProxyReport r;
+  const auto start = Clock::now();
+  const Frame frame = stroke_frame(sketch);
+  const Sketch unit = unit_strokes(sketch, frame);
+
+  auto t0 = Clock::now();
+  progress.update("sampling strokes", 0.0);
+  SamplingOptions sampling;
+  sampling.count = options.points;
+  sampling.spacing = options.sample_spacing;
+  sampling.min_distance = std::min(options.sample_spacing, 0.5 * options.cell);
+  const Eigen::MatrixX3d samples = sample_strokes(unit, sampling);
+  r.samples = static_cast<std::size_t>(samples.rows());
+  check_encloses(samples);
+  progress.update("sampling strokes", 1.0);
+  r.sampling_seconds = seconds_since(t0);
+
+  t0 = Clock::now();
+  VipssOptions vipss_options;
+  vipss_options.lambda = options.lambda;
+  vipss_options.threads = options.threads;
+  const VipssResult vipss = solve_vipss(samples, vipss_options, progress);
+  r.vipss = vipss.summary;
+  r.vipss_seconds = seconds_since(t0);
+
+  t0 = Clock::now();
+  const HermiteRbf& f = vipss.function;
+  const unsigned threads = options.threads;
+  const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
+    f.values(p, values, threads);
+  };
+  BoundingBox box;
+  for (Eigen::Index i = 0; i < samples.rows(); ++i) box.extend(samples.row(i).transpose());
+  box.min.array() -= options.padding;
+  box.max.array() += options.padding;
+  PolygonizeOptions poly;
+  poly.cell_size = options.cell;
+  PolygonizeSummary poly_summary;
+  TriMesh mesh = polygonize(field, samples, box, poly, progress, &poly_summary);
+  r.evaluations = poly_summary.evaluations;
+  if (mesh.n_faces() == 0)
+    throw Error::processing("VIPSS found no closed surface through the strokes");
+  r.polygonize_seconds = seconds_since(t0);
+
+  t0 = Clock::now();
+  const int steps = options.projection_steps;
+  const double max_move = 2.0 * std::max(options.cell, options.edge);
+  const SurfaceProjector project = [&](Eigen::MatrixX3d& p) {
+    constexpr std::size_t kChunk = 64;
+    const auto rows = static_cast<std::size_t>(p.rows());
+    parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t c) {
+      for (std::size_t i = c * kChunk; i < std::min(rows, (c + 1) * kChunk); ++i) {
+        const Eigen::Vector3d start = p.row(static_cast<Eigen::Index>(i)).transpose();
+        Eigen::Vector3d x = start;
+        for (int s = 0; s < steps; ++s) {  // Newton on f along its gradient
+          Eigen::Vector3d g;
+          const double value = f.value_gradient(x, &g);
+          const double g2 = g.squaredNorm();
+          if (!(g2 > 0.0)) break;
+          x -= value / g2 * g;
+        }
+        // Vertices start within a grid cell of the surface; a longer jump (a nearly vanishing
+        // gradient) would tear the mesh, so such a vertex stays where smoothing put it.
+        if (!x.allFinite() || (x - start).norm() > max_move) x = start;
+        p.row(static_cast<Eigen::Index>(i)) = x.transpose();
+      }
+    });
+  };
+  RemeshOptions remesh_options;
+  remesh_options.target_edge = options.edge;
+  remesh_options.iterations = options.remesh_iterations;
+  remesh(mesh, remesh_options, project, progress);
+  r.remesh_seconds = seconds_since(t0);
+
+  transform_mesh(mesh, Eigen::Vector3d::Zero(), 1.0 / frame.scale);
+  transform_mesh(mesh, -frame.centre, 1.0);
+  fill_topology(mesh, r);
+  r.total_seconds = seconds_since(start);
+  if (report) *report = r;
+  return mesh;
+}
+
+TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const ProxyOptions& options,
+                      const Progress& progress, ProxyReport* report) {
+  std::string why;
+  if (!options.valid(&why)) throw Error::usage(why);
+  if (user_mesh.n_faces() == 0) throw Error::processing("the proxy mesh has no triangles");
+  for (const auto v : user_mesh.vertices())
+    if (!to_eigen(user_mesh.point(v)).allFinite())
+      throw Error::processing("the proxy mesh has a vertex with NaN or Inf coordinates");
+  ProxyReport r;
+  const auto start = Clock::now();
+  const Frame frame = stroke_frame(sketch);
+  const Sketch unit = unit_strokes(sketch, frame);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& s : unit.strokes) {
+    const Stroke dense = s.points.size() > 1 ? resample(s, 0.5 * options.edge) : s;
+    points.insert(points.end(), dense.points.begin(), dense.points.end());
+  }
+  Eigen::MatrixX3d targets(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    targets.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+
+  TriMesh mesh = user_mesh;
+  transform_mesh(mesh, frame.centre, frame.scale);
+  auto t0 = Clock::now();
+  RemeshOptions remesh_options;
+  remesh_options.target_edge = options.edge;
+  remesh_options.iterations = options.remesh_iterations;
+  remesh(mesh, remesh_options, {}, progress);
+  r.remesh_seconds = seconds_since(t0);
+
+  t0 = Clock::now();
+  const double before = median_nearest_vertex_distance(mesh, targets, options.threads);
+  if (before > options.max_proxy_distance)
+    throw Error::processing("the proxy mesh is far from the strokes: median distance " +
+                            std::to_string(before) + " of the sketch diagonal (at most " +
+                            std::to_string(options.max_proxy_distance) +
+                            "); is it in the sketch's units and position?");
+  AttractOptions attract;
+  attract.weight = options.attract_weight;
+  attract.rounds = options.attract_rounds;
+  attract.threads = options.threads;
+  AttractSummary summary;
+  attract_to_points(mesh, targets, attract, progress, &summary);
+  r.attract_seconds = seconds_since(t0);
+  r.anchors = summary.anchors;
+  r.median_distance_before = summary.median_before / frame.scale;
+  r.median_distance_after = summary.median_after / frame.scale;
+
+  transform_mesh(mesh, Eigen::Vector3d::Zero(), 1.0 / frame.scale);
+  transform_mesh(mesh, -frame.centre, 1.0);
+  fill_topology(mesh, r);
+  r.total_seconds = seconds_since(start);
+  if (report) *report = r;
+  return mesh;
+}
+
+}  // namespace sketchsurf

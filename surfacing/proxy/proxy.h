@@ -1,0 +1,80 @@
+#pragma once
+// The proxy surface (paper §5 "Proxy creation", METHOD.md section 1): automatic, with VIPSS on
+// samples of the strokes, polygonised and remeshed; or a user's rough mesh attracted to the strokes.
+
+#include <cstddef>
+#include <string>
+
+#include "surfacing/mesh.h"
+#include "surfacing/progress.h"
+#include "surfacing/proxy/vipss.h"
+#include "surfacing/sketch/sketch.h"
+
+namespace sketchsurf {
+
+/// Every tunable number of the proxy stage. Lengths are fractions of the bounding-box diagonal of
+/// the strokes that are not ignored (the sketch is normalised to unit diagonal internally).
+struct ProxyOptions {
+  std::size_t points = 1000;   ///< VIPSS sample count (Huang et al. 2019); see proxy_bench
+  double lambda = 0.0;         ///< VIPSS smoothing weight on the unit-diagonal sketch; 0 = interpolate
+  double edge = 0.007;         ///< target edge length, fraction of diagonal (paper §5: the authors'
+                               ///< proxy_resolution)
+  double cell = 0.01;          ///< polygonisation grid spacing, fraction of diagonal
+  double padding = 0.1;        ///< margin of the polygonisation box around the strokes, fraction of
+                               ///< diagonal
+  double sample_spacing = 0.002;  ///< stroke resampling before farthest-point sampling, fraction
+  int remesh_iterations = 5;   ///< isotropic remeshing rounds (Botsch & Kobbelt 2004)
+  int projection_steps = 3;    ///< Newton steps per projection onto the VIPSS surface
+  double attract_weight = 2.0; ///< Least-Squares Mesh positional weight (Sorkine & Cohen-Or 2004)
+  int attract_rounds = 3;      ///< Least-Squares Mesh rounds (re-assign nearest vertices, re-solve)
+  double max_proxy_distance = 0.25;  ///< user proxy: largest accepted median distance from the
+                                    ///< strokes to the proxy, fraction of diagonal
+  unsigned threads = 0;        ///< worker threads (0 = all); never changes the result
+
+  /// True when the options can be used; otherwise `why` (if given) says which field is wrong.
+  bool valid(std::string* why = nullptr) const;
+};
+
+/// Topology of a mesh: per connected component Euler characteristic V - E + F = 2 - 2g - b.
+struct MeshTopology {
+  std::size_t components = 0;      ///< connected components (through edges)
+  std::size_t boundary_loops = 0;  ///< border loops; 0 for a closed mesh
+  long euler = 0;                  ///< V - E + F of the whole mesh
+  long genus = 0;                  ///< sum of the components' genera
+  bool closed() const { return boundary_loops == 0; }
+};
+
+/// Components, border loops, Euler characteristic and genus of `mesh`.
+MeshTopology mesh_topology(const TriMesh& mesh);
+
+/// What the proxy stage did (the CLI's report.json).
+struct ProxyReport {
+  std::size_t samples = 0;        ///< VIPSS input points (0 for a user proxy)
+  std::size_t vertices = 0, faces = 0;
+  MeshTopology topology;
+  VipssSummary vipss;             ///< automatic proxy only
+  std::size_t evaluations = 0;    ///< implicit-function evaluations by the polygoniser
+  std::size_t anchors = 0;        ///< user proxy: vertices pulled to strokes
+  double median_distance_before = 0, median_distance_after = 0;  ///< user proxy: strokes to
+                                                                 ///< nearest vertex, sketch units
+  double sampling_seconds = 0, vipss_seconds = 0, polygonize_seconds = 0, remesh_seconds = 0,
+         attract_seconds = 0, total_seconds = 0;
+};
+
+/// The automatic proxy: samples the strokes (not the ignored ones), runs VIPSS, polygonises every
+/// component of its zero set that passes through the samples, remeshes isotropically onto it.
+/// @return a closed, manifold, outward-oriented mesh in the sketch's units.
+/// @throws Error (Usage) for invalid options; Error (Processing) when the strokes are too few, lie
+///         in a plane or on a line, or VIPSS finds no surface; Error (Cancelled).
+TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Progress& progress = {},
+                   ProxyReport* report = nullptr);
+
+/// A user proxy (any resolution, e.g. a low-poly model): checked (not empty, finite, median distance
+/// from the strokes at most max_proxy_distance), remeshed to the target edge length, attracted to
+/// the strokes by a Least-Squares Mesh.
+/// @throws Error (Usage) for invalid options; Error (Processing) for an empty or far-away mesh or
+///         a sketch without strokes; Error (Cancelled).
+TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const ProxyOptions& options,
+                      const Progress& progress = {}, ProxyReport* report = nullptr);
+
+}  // namespace sketchsurf
