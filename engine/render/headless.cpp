@@ -15,9 +15,10 @@ VkExtent2D extent_of(int width, int height) {
 
 }  // namespace
 
-HeadlessRenderer::HeadlessRenderer(const vk::Context& context, int width, int height)
+HeadlessRenderer::HeadlessRenderer(const vk::Context& context, int width, int height,
+                                   VkSampleCountFlagBits samples)
     : context_(&context),
-      target_(context, extent_of(width, height), VK_SAMPLE_COUNT_4_BIT),
+      target_(context, extent_of(width, height), samples),
       renderer_(context, target_.render_pass(), target_.samples()) {}
 
 void HeadlessRenderer::set_scene(const SceneGeometry& geometry) {

@@ -14,9 +14,10 @@ namespace sketchsurf::render {
 /// it). Not copyable.
 class HeadlessRenderer {
  public:
-  /// A width x height target (pixels, each >= 1) with up to 4x MSAA. Throws VulkanError, or
-  /// Error (Usage) for a size the device cannot render.
-  HeadlessRenderer(const vk::Context& context, int width, int height);
+  /// A width x height target (pixels, each >= 1) with up to `samples` MSAA samples (fewer when
+  /// the device cannot). Throws VulkanError, or Error (Usage) for a size the device cannot render.
+  HeadlessRenderer(const vk::Context& context, int width, int height,
+                   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT);
 
   int width() const { return int(target_.extent().width); }
   int height() const { return int(target_.extent().height); }

@@ -15,6 +15,40 @@ std::uint32_t pack(const Rgb8& c) {
   return std::uint32_t(c[0]) | (std::uint32_t(c[1]) << 8) | (std::uint32_t(c[2]) << 16) | (255u << 24);
 }
 
+/// Douglas-Peucker: the points of `points` to keep so that every dropped point is within
+/// `tolerance` of the kept polyline (first and last always kept). Iterative, O(n log n) typical.
+/// Works in double precision so that the choice does not depend on the sketch's scale or position.
+std::vector<glm::vec3> simplify(const std::vector<glm::dvec3>& points, double tolerance) {
+  const std::size_t n = points.size();
+  if (n < 3 || tolerance <= 0.0) return {points.begin(), points.end()};
+  std::vector<char> keep(n, 0);
+  keep.front() = keep.back() = 1;
+  std::vector<std::pair<std::size_t, std::size_t>> stack{{0, n - 1}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    const glm::dvec3 ab = points[b] - points[a];
+    const double len2 = glm::dot(ab, ab);
+    double worst = -1.0;
+    std::size_t worst_i = a;
+    for (std::size_t i = a + 1; i < b; ++i) {
+      const glm::dvec3 ap = points[i] - points[a];
+      const double t = len2 > 0.0 ? glm::clamp(glm::dot(ap, ab) / len2, 0.0, 1.0) : 0.0;
+      const double d = glm::length(ap - t * ab);
+      if (d > worst) worst = d, worst_i = i;
+    }
+    if (worst > tolerance) {
+      keep[worst_i] = 1;
+      stack.emplace_back(a, worst_i);
+      stack.emplace_back(worst_i, b);
+    }
+  }
+  std::vector<glm::vec3> kept;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) kept.emplace_back(points[i]);
+  return kept;
+}
+
 /// Accumulates ribbons (polylines drawn as camera-facing quads strips) into the scene arrays.
 class RibbonBuilder {
  public:
@@ -229,6 +263,8 @@ bool SceneOptions::valid(std::string* why) const {
     if (!(value > 0.0) || !std::isfinite(value))
       return fail(std::string(name) + " must be positive and finite, got " + std::to_string(value));
   if (!(sharp_angle >= 0.0)) return fail("sharp_angle must be >= 0 degrees");
+  if (!(stroke_tolerance >= 0.0) || !std::isfinite(stroke_tolerance))
+    return fail("stroke_tolerance must be >= 0 and finite");
   return true;
 }
 
@@ -245,12 +281,13 @@ SceneGeometry build_scene(const Sketch& sketch, const TriMesh* mesh,
 
   RibbonBuilder ribbons(scene);
   const float stroke_half_width = float(0.5 * options.stroke_width * diagonal);
-  std::vector<glm::vec3> points;
+  const double tolerance = options.stroke_tolerance * options.stroke_width * diagonal;
+  const glm::dvec3 origin(scene.origin.x(), scene.origin.y(), scene.origin.z());
+  std::vector<glm::dvec3> points;
   for (const Stroke& stroke : sketch.strokes) {
     if (stroke.points.size() < 2) continue;
     points.clear();
-    for (const auto& p : stroke.points) points.emplace_back(glm::dvec3(p.x(), p.y(), p.z()) -
-                                                            glm::dvec3(scene.origin.x(), scene.origin.y(), scene.origin.z()));
+    for (const auto& p : stroke.points) points.push_back(glm::dvec3(p.x(), p.y(), p.z()) - origin);
     std::uint32_t color = pack(kStrokeColor);
     if (options.stroke_colors)
       color = pack_rgba(stroke.color[0], stroke.color[1], stroke.color[2], 1.0f);
@@ -258,8 +295,10 @@ SceneGeometry build_scene(const Sketch& sketch, const TriMesh* mesh,
       color = pack(kIgnoredStrokeColor);
     else if (stroke.boundary)
       color = pack(kBoundaryStrokeColor);
-    ribbons.add(points, color, stroke_half_width);
+    const auto kept = simplify(points, tolerance);
+    ribbons.add(kept, color, stroke_half_width);
     scene.stroke_points += points.size();
+    scene.ribbon_points += kept.size();
   }
   scene.stroke_index_count = static_cast<std::uint32_t>(scene.ribbon_indices.size());
   if (mesh) MeshBuilder(*mesh, attributes, options, scene, ribbons, float(diagonal)).build();

@@ -17,6 +17,8 @@ namespace sketchsurf::render {
 /// diagonal (strokes and mesh together), so pictures do not depend on the sketch's units.
 struct SceneOptions {
   double stroke_width = 0.006;   ///< ribbon width of strokes, fraction of the bbox diagonal
+  double stroke_tolerance = 0.05; ///< strokes are simplified (Douglas-Peucker) as long as no point
+                                  ///< moves more than this fraction of the stroke width; 0 = keep all
   bool stroke_colors = false;    ///< strokes in their own colours (else palette.h kStrokeColor)
   bool regions = false;          ///< colour the mesh by vertex labels (palette.h), when it has them
   bool region_boundaries = true; ///< with `regions`: outline the curves between regions
@@ -40,13 +42,15 @@ struct SceneGeometry {
   std::uint32_t stroke_index_count = 0;              ///< the first indices draw strokes, the rest edges
   std::vector<MeshVertex> mesh_vertices;
   std::vector<std::uint32_t> mesh_indices;           ///< triangle list
-  std::size_t stroke_points = 0;                     ///< stroke points drawn
+  std::size_t stroke_points = 0;                     ///< stroke points in the input (drawn strokes)
+  std::size_t ribbon_points = 0;                     ///< of which kept after simplification
   std::size_t outlined_edges = 0;                    ///< crease, boundary and region-boundary segments
 
   bool empty() const { return ribbon_indices.empty() && mesh_indices.empty(); }
 };
 
-/// Builds the geometry of `sketch` (strokes with fewer than 2 points are skipped) and, when
+/// Builds the geometry of `sketch` (strokes with fewer than 2 points are skipped; dense strokes
+/// are simplified within `options.stroke_tolerance`, a small fraction of their width) and, when
 /// `mesh` is given, of the mesh with its `attributes` (labels for regions, colours).
 /// Throws Error (Usage) when `options` is not valid or an attribute array's size differs from the
 /// mesh's vertex count.

@@ -16,7 +16,9 @@ using render::build_scene;
 
 TEST(Scene, RibbonsHaveTwoVerticesPerPointAndTwoTrianglesPerSegment) {
   const Sketch sketch = cube_sketch(1.0, false);
-  const auto scene = build_scene(sketch);
+  render::SceneOptions all_points;
+  all_points.stroke_tolerance = 0.0;
+  const auto scene = build_scene(sketch, nullptr, nullptr, all_points);
   std::size_t points = 0, segments = 0;
   for (const auto& s : sketch.strokes) points += s.size(), segments += s.size() - 1;
   EXPECT_EQ(scene.stroke_points, points);
@@ -29,14 +31,55 @@ TEST(Scene, RibbonsHaveTwoVerticesPerPointAndTwoTrianglesPerSegment) {
     EXPECT_NEAR(v.half_width, 0.5 * render::SceneOptions{}.stroke_width * diag, 1e-6);
     EXPECT_NEAR(glm::length(v.tangent), 1.0f, 1e-5f);
   }
+  // Simplified (the default), each straight edge keeps only its two ends.
+  const auto simplified = build_scene(sketch);
+  EXPECT_EQ(simplified.stroke_points, points);
+  EXPECT_EQ(simplified.ribbon_points, 2 * sketch.strokes.size());
+}
+
+TEST(Scene, SimplifiedStrokesStayWithinTheTolerance) {
+  // Noisy circles: every input point is within tolerance * width of the kept polyline.
+  Sketch sketch = torus_sketch();
+  add_noise(sketch, 1e-4, 7);
+  const render::SceneOptions options;
+  const auto scene = build_scene(sketch, nullptr, nullptr, options);
+  EXPECT_LT(scene.ribbon_points, scene.stroke_points);
+  const double width = options.stroke_width * sketch.bounding_box().diagonal();
+  std::size_t vertex = 0;
+  for (const Stroke& s : sketch.strokes) {
+    std::vector<Eigen::Vector3d> kept;
+    const std::size_t first = vertex;
+    while (vertex < scene.ribbon_vertices.size() &&
+           (vertex == first || kept.back() != s.points.back())) {
+      const glm::vec3 p = scene.ribbon_vertices[vertex].position;
+      kept.push_back(Eigen::Vector3d(p.x, p.y, p.z) + scene.origin);
+      vertex += 2;
+      if ((kept.back() - s.points.back()).norm() < 1e-6) kept.back() = s.points.back();
+    }
+    for (const auto& p : s.points) {
+      double best = 1e300;
+      for (std::size_t i = 0; i + 1 < kept.size(); ++i) {
+        const Eigen::Vector3d ab = kept[i + 1] - kept[i];
+        const double t = std::clamp((p - kept[i]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        best = std::min(best, (kept[i] + t * ab - p).norm());
+      }
+      EXPECT_LE(best, options.stroke_tolerance * width * 1.001 + 1e-6);
+    }
+  }
 }
 
 TEST(Scene, ScaleInvariantUpToTheOrigin) {
   // Scaling the sketch by 1e3 and moving it far away scales the relative positions and widths.
   Sketch big = torus_sketch();
   transform(big, 1e3, Eigen::Vector3d(1e5, 2e5, -3e5));
-  const auto a = build_scene(torus_sketch());
-  const auto b = build_scene(big);
+  // Exact with every point kept; simplification may break ties between equally distant points
+  // differently (regular circles), so there only the amount kept is compared.
+  render::SceneOptions all_points;
+  all_points.stroke_tolerance = 0.0;
+  const auto a = build_scene(torus_sketch(), nullptr, nullptr, all_points);
+  const auto b = build_scene(big, nullptr, nullptr, all_points);
+  const auto sa = build_scene(torus_sketch()), sb = build_scene(big);
+  EXPECT_NEAR(double(sa.ribbon_points), double(sb.ribbon_points), 0.02 * sa.ribbon_points);
   ASSERT_EQ(a.ribbon_vertices.size(), b.ribbon_vertices.size());
   for (std::size_t i = 0; i < a.ribbon_vertices.size(); ++i) {
     EXPECT_LT(glm::length(b.ribbon_vertices[i].position / 1e3f - a.ribbon_vertices[i].position), 1e-5f);
