@@ -99,5 +99,22 @@ TEST(Curves, WriterSkipsEmptyStrokesAndRefusesNonFinitePoints) {
   EXPECT_EQ(testing::read_text(dir / "b.curves"), "keep me");
 }
 
+TEST(Curves, RandomCorruptionsGiveAnInputErrorOrAValidSketch) {
+  TempDir dir;
+  write_curves(testing::cube_sketch(1.0, false), dir / "a.curves");
+  const std::string text = testing::read_text(dir / "a.curves");
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    testing::write_text(dir / "c.curves", testing::corrupt(text, rng));
+    try {
+      const Sketch s = read_curves(dir / "c.curves");
+      for (const auto& st : s.strokes) EXPECT_TRUE(st.points.size() > 0 && st.attributes_consistent());
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
+      EXPECT_NE(std::string(e.what()).find("c.curves:"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sketchsurf

@@ -152,6 +152,24 @@ inline void expect_same_points(const Sketch& a, const Sketch& b, double toleranc
   }
 }
 
+/// `text` with 1 to 3 seeded random edits (replace, delete a few bytes, insert), biased towards
+/// bytes that matter to the text formats.
+inline std::string corrupt(const std::string& text, std::mt19937& rng) {
+  static const std::string special = "{}[]\",:-.0123456789eE \tfnvl/\n\r\x80\xff";
+  std::string bad = text;
+  const int edits = 1 + static_cast<int>(rng() % 3);
+  for (int e = 0; e < edits && !bad.empty(); ++e) {
+    const std::size_t at = rng() % bad.size();
+    const char c = rng() % 2 ? special[rng() % special.size()] : static_cast<char>(rng());
+    switch (rng() % 3) {
+      case 0: bad[at] = c; break;
+      case 1: bad.erase(at, 1 + rng() % 8); break;
+      default: bad.insert(bad.begin() + static_cast<std::ptrdiff_t>(at), c); break;
+    }
+  }
+  return bad;
+}
+
 /// Runs `f`, expecting an Error of kind `kind` whose message contains every one of `parts`.
 template <typename F>
 void expect_error(F&& f, ErrorKind kind, std::initializer_list<std::string> parts) {

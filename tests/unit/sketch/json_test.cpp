@@ -214,21 +214,10 @@ TEST(Json, RandomCorruptionsGiveAnInputErrorOrAValidSketch) {
   TempDir dir;
   write_json(sketch, dir / "s.json");
   const std::string text = testing::read_text(dir / "s.json");
-  const std::string special = "{}[]\",:-.0123456789eE \\tfn\x80\xff";
   std::mt19937 rng(2024);
   int errors = 0, valid = 0;
   for (int trial = 0; trial < 400; ++trial) {
-    std::string bad = text;
-    const int edits = 1 + static_cast<int>(rng() % 3);
-    for (int e = 0; e < edits; ++e) {
-      const std::size_t at = rng() % bad.size();
-      const char c = rng() % 2 ? special[rng() % special.size()] : static_cast<char>(rng());
-      switch (rng() % 3) {
-        case 0: bad[at] = c; break;
-        case 1: bad.erase(at, 1 + rng() % 8); break;
-        default: bad.insert(bad.begin() + static_cast<std::ptrdiff_t>(at), c); break;
-      }
-    }
+    const std::string bad = testing::corrupt(text, rng);
     try {
       const Sketch s = read_text(bad);
       ++valid;

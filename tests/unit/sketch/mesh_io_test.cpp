@@ -217,5 +217,27 @@ TEST(MeshIo, DeletedElementsAreLeftOutAndIndicesCompacted) {
   EXPECT_EQ(read.n_faces(), faces - 5);
 }
 
+TEST(MeshIo, RandomCorruptionsGiveAnInputErrorOrAValidMesh) {
+  TempDir dir;
+  const TriMesh mesh = testing::icosphere(0);
+  write_mesh(mesh, dir / "m.ply", attributes_for(mesh));
+  write_mesh(mesh, dir / "m.obj");
+  const std::string files[2] = {testing::read_text(dir / "m.ply"), testing::read_text(dir / "m.obj")};
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::string name = trial % 2 ? "c.obj" : "c.ply";
+    testing::write_text(dir / name, testing::corrupt(files[trial % 2], rng));
+    try {
+      MeshAttributes a;
+      const TriMesh m = read_mesh(dir / name, &a);
+      EXPECT_GT(m.n_faces(), 0u);
+      EXPECT_TRUE(a.labels.empty() || a.labels.size() == m.n_vertices());
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sketchsurf

@@ -148,5 +148,23 @@ TEST(ObjPolylines, TwoPointStrokesRoundTripAsSeparateChains) {
   testing::expect_same_points(sketch, read_obj_polylines(dir / "s.obj"), 0.0);
 }
 
+TEST(ObjPolylines, RandomCorruptionsGiveAnInputErrorOrAValidSketch) {
+  TempDir dir;
+  write_obj_polylines(testing::cube_sketch(1.0, false), dir / "a.obj");
+  const std::string polylines = testing::read_text(dir / "a.obj");
+  const std::string segments = numbered_vertices(9) + "l 1 2\nl 2 3\nl 3 4\nl 4 1\nl 3 5\nl 6 7\nf 1 2 3\n";
+  std::mt19937 rng(8);
+  for (int trial = 0; trial < 300; ++trial) {
+    testing::write_text(dir / "c.obj", testing::corrupt(trial % 2 ? polylines : segments, rng));
+    try {
+      const Sketch s = read_obj_polylines(dir / "c.obj");
+      for (const auto& st : s.strokes) EXPECT_GE(st.points.size(), 2u);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
+      EXPECT_NE(std::string(e.what()).find("c.obj:"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sketchsurf
