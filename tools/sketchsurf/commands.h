@@ -20,6 +20,8 @@ void add_info_command(CLI::App& app, const GlobalOptions& global);
 void add_convert_command(CLI::App& app, const GlobalOptions& global);
 /// `segment` (cmd_segment.cpp): proxy labelled into smooth regions, paper §4.1-4.2.
 void add_segment_command(CLI::App& app, const GlobalOptions& global);
+/// `surface` (cmd_surface.cpp): the final piecewise-smooth surface, the whole method (paper §4-5).
+void add_surface_command(CLI::App& app, const GlobalOptions& global);
 /// `render` (cmd_render.cpp); only in builds with SKETCHSURF_ENGINE (SKETCHSURF_HAVE_ENGINE).
 void add_render_command(CLI::App& app, const GlobalOptions& global);
 

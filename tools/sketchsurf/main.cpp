@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   cli::add_info_command(app, global);
   cli::add_convert_command(app, global);
   cli::add_segment_command(app, global);
+  cli::add_surface_command(app, global);
 #ifdef SKETCHSURF_HAVE_ENGINE
   cli::add_render_command(app, global);
 #endif

@@ -1,0 +1,213 @@
+#include "surfacing/pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+
+#include "surfacing/error.h"
+#include "surfacing/extract/mirror.h"
+
+namespace sketchsurf {
+
+bool PrepareOptions::valid(std::string* why) const {
+  if (!(resample_spacing >= 0.0 && resample_spacing < 1.0)) {
+    if (why) *why = "prepare.resample_spacing must be in [0, 1)";
+    return false;
+  }
+  if (min_points < 2) {
+    if (why) *why = "prepare.min_points must be at least 2";
+    return false;
+  }
+  return true;
+}
+
+bool Params::valid(std::string* why) const {
+  return prepare.valid(why) && proxy.valid(why) && segment.valid(why) && extract.valid(why);
+}
+
+namespace {
+
+using Setter = std::function<void(Params&, double)>;
+
+template <class Member>
+Setter setter(Member member) {
+  return [member](Params& p, double value) {
+    auto& field = std::invoke(member, p);
+    using T = std::remove_reference_t<decltype(field)>;
+    if constexpr (std::is_same_v<T, bool>) {
+      field = value != 0.0;
+    } else if constexpr (std::is_integral_v<T>) {
+      if (value != std::floor(value) || value < 0.0)
+        throw Error::usage("expects a whole number >= 0, got " + std::to_string(value));
+      field = static_cast<T>(value);
+    } else {
+      field = value;
+    }
+  };
+}
+
+/// Every parameter apply() knows, by dotted name.
+const std::map<std::string, Setter>& parameter_table() {
+  static const std::map<std::string, Setter> table = {
+      {"prepare.resample_spacing", setter([](Params& p) -> auto& { return p.prepare.resample_spacing; })},
+      {"prepare.min_points", setter([](Params& p) -> auto& { return p.prepare.min_points; })},
+      {"proxy.points", setter([](Params& p) -> auto& { return p.proxy.points; })},
+      {"proxy.lambda", setter([](Params& p) -> auto& { return p.proxy.lambda; })},
+      {"proxy.edge", setter([](Params& p) -> auto& { return p.proxy.edge; })},
+      {"proxy.cell", setter([](Params& p) -> auto& { return p.proxy.cell; })},
+      {"proxy.padding", setter([](Params& p) -> auto& { return p.proxy.padding; })},
+      {"proxy.remesh_iterations", setter([](Params& p) -> auto& { return p.proxy.remesh_iterations; })},
+      {"proxy.attract_weight", setter([](Params& p) -> auto& { return p.proxy.attract_weight; })},
+      {"proxy.max_proxy_distance", setter([](Params& p) -> auto& { return p.proxy.max_proxy_distance; })},
+      {"segment.epsilon", setter([](Params& p) -> auto& { return p.segment.epsilon; })},
+      {"segment.w_smooth", setter([](Params& p) -> auto& { return p.segment.w_smooth; })},
+      {"segment.w_simp", setter([](Params& p) -> auto& { return p.segment.w_simp; })},
+      {"segment.mu", setter([](Params& p) -> auto& { return p.segment.mu; })},
+      {"segment.lambda", setter([](Params& p) -> auto& { return p.segment.lambda; })},
+      {"segment.init_boost", setter([](Params& p) -> auto& { return p.segment.init_boost; })},
+      {"segment.max_degree", setter([](Params& p) -> auto& { return p.segment.max_degree; })},
+      {"segment.merges_per_iteration", setter([](Params& p) -> auto& { return p.segment.merges_per_iteration; })},
+      {"segment.max_iterations", setter([](Params& p) -> auto& { return p.segment.max_iterations; })},
+      {"segment.restarts", setter([](Params& p) -> auto& { return p.segment.restarts; })},
+      {"segment.seed", setter([](Params& p) -> auto& { return p.segment.seed; })},
+      {"segment.simplify", setter([](Params& p) -> auto& { return p.segment.simplify; })},
+      {"segment.threads", setter([](Params& p) -> auto& { return p.segment.threads; })},
+      {"extract.gamma_2d", setter([](Params& p) -> auto& { return p.extract.energy.gamma_2d; })},
+      {"extract.gamma_1d", setter([](Params& p) -> auto& { return p.extract.energy.gamma_1d; })},
+      {"extract.smooth_angle", setter([](Params& p) -> auto& { return p.extract.energy.smooth_angle; })},
+      {"extract.sharp_angle", setter([](Params& p) -> auto& { return p.extract.energy.sharp_angle; })},
+      {"extract.attract_weight", setter([](Params& p) -> auto& { return p.extract.energy.attract_weight; })},
+      {"extract.max_iterations", setter([](Params& p) -> auto& { return p.extract.energy.max_iterations; })},
+      {"extract.function_tolerance", setter([](Params& p) -> auto& { return p.extract.energy.function_tolerance; })},
+      {"extract.threads", setter([](Params& p) -> auto& { return p.extract.energy.threads; })},
+      {"extract.edge_margin", setter([](Params& p) -> auto& { return p.extract.seams.edge_margin; })},
+      {"extract.inside_distance", setter([](Params& p) -> auto& { return p.extract.trim.inside_distance; })},
+      {"extract.outside_distance", setter([](Params& p) -> auto& { return p.extract.trim.outside_distance; })},
+      {"extract.attract_distance", setter([](Params& p) -> auto& { return p.extract.trim.attract_distance; })},
+  };
+  return table;
+}
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+void Params::apply(const std::map<std::string, double>& values) {
+  const auto& table = parameter_table();
+  Params updated = *this;
+  for (const auto& [name, value] : values) {
+    auto it = table.find(name);
+    if (it == table.end()) {
+      std::string known;
+      for (const auto& [k, _] : table) known += (known.empty() ? "" : ", ") + k;
+      throw Error::usage("unknown parameter '" + name + "'; known parameters: " + known);
+    }
+    try {
+      it->second(updated, value);
+    } catch (const Error& e) {
+      throw Error::usage("parameter '" + name + "' " + e.what());
+    }
+  }
+  std::string why;
+  if (!updated.valid(&why)) throw Error::usage("invalid parameters: " + why);
+  *this = updated;
+}
+
+std::vector<std::string> Params::names() {
+  std::vector<std::string> out;
+  for (const auto& [k, _] : parameter_table()) out.push_back(k);
+  return out;
+}
+
+Surfacer::Surfacer(Params params, ProgressCallback progress)
+    : params_(std::move(params)), progress_(std::move(progress)) {}
+
+SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) const {
+  const auto start = Clock::now();
+  std::string why;
+  if (!params_.valid(&why)) throw Error::usage(why);
+  const Progress progress(progress_);
+  SurfaceResult result;
+  SurfaceReport& report = result.report;
+
+  // Prepare (METHOD.md §0).
+  auto t = Clock::now();
+  progress.update("prepare", 0.0);
+  Sketch sketch = input;
+  CleanOptions clean_options;
+  clean_options.min_points = static_cast<std::size_t>(params_.prepare.min_points);
+  report.cleaning = clean(sketch, clean_options);
+  sketch.assign_ids();
+  if (sketch.strokes.empty())
+    throw Error(ErrorKind::Input, "the sketch has no stroke (empty, or every stroke was too short "
+                                  "or invalid); draw some strokes");
+  if (std::all_of(sketch.strokes.begin(), sketch.strokes.end(), [](const Stroke& s) { return s.ignored; }))
+    throw Error(ErrorKind::Input, "every stroke of the sketch is marked ignored; unmark the strokes "
+                                  "the surface should follow");
+  report.diagonal = sketch.bounding_box().diagonal();
+  if (!(report.diagonal > 0.0))
+    throw Error(ErrorKind::Input, "all the sketch's points coincide; nothing to surface");
+  if (params_.prepare.resample_spacing > 0.0)
+    resample(sketch, params_.prepare.resample_spacing * report.diagonal);
+  report.strokes = sketch.strokes.size();
+  report.points = sketch.point_count();
+  report.prepare_s = seconds_since(t);
+
+  // Proxy (§5 "Proxy creation").
+  t = Clock::now();
+  progress.update("proxy", 0.0);
+  report.user_proxy = user_proxy != nullptr;
+  if (user_proxy) {
+    if (user_proxy->n_faces() == 0)
+      throw Error(ErrorKind::Input, "the proxy mesh has no triangles; give a triangle (or polygon) "
+                                    "mesh, not points or lines");
+    result.proxy = attract_proxy(*user_proxy, sketch, params_.proxy, progress, &report.proxy);
+  } else {
+    result.proxy = make_proxy(sketch, params_.proxy, progress, &report.proxy);
+  }
+  // Symmetric sketches (§5): half of the sketch on half of the proxy.
+  Sketch work = sketch;
+  if (sketch.mirror) {
+    result.proxy = clip_to_half_space(result.proxy, *sketch.mirror,
+                                      params_.extract.plane_tolerance * report.diagonal)
+                       .mesh;
+    work = half_sketch(sketch, *sketch.mirror);
+    if (work.strokes.empty())
+      throw Error(ErrorKind::Input, "no stroke lies on the positive side of the mirror plane; flip "
+                                    "the plane (negate a, b, c, d)");
+  }
+  report.proxy_s = seconds_since(t);
+
+  // Association and segmentation (§4.1-4.2).
+  t = Clock::now();
+  result.segmentation = segment(work, result.proxy, params_.segment, progress);
+  report.segmentation = result.segmentation.summary;
+  report.segment_s = seconds_since(t);
+
+  // Final mesh (§4.3, App. D).
+  t = Clock::now();
+  ExtractedSurface surface = extract(result.proxy, result.segmentation.labels,
+                                     result.segmentation.models, work, params_.extract, progress);
+  result.mesh = std::move(surface.mesh);
+  result.labels = std::move(surface.labels);
+  result.sharp = std::move(surface.sharp);
+  report.extraction = surface.summary;
+  report.extraction_s = seconds_since(t);
+
+  Sketch measured = sketch;
+  measured.mirror.reset();
+  report.stroke_distance = stroke_distance(result.mesh, measured, report.diagonal);
+  report.total_s = seconds_since(start);
+  progress.update("done", 1.0);
+  return result;
+}
+
+SurfaceResult surface(const Sketch& sketch, const Params& params, const TriMesh* user_proxy) {
+  return Surfacer(params).run(sketch, user_proxy);
+}
+
+}  // namespace sketchsurf

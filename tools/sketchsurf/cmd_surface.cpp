@@ -1,0 +1,248 @@
+// sketchsurf surface SKETCH [--proxy MESH] -o OUT.(obj|ply) [--report report.json]
+// [--regions regions.ply] [--mirror x|y|z|a,b,c,d] [--boundary-strokes IDS] [--seed N]:
+// the piecewise-smooth surface of a sketch (the whole method, paper §4-5).
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "surfacing/pipeline.h"
+#include "surfacing/sketch/io/atomic_file.h"
+#include "surfacing/sketch/io/mesh_io.h"
+#include "tools/sketchsurf/commands.h"
+
+namespace sketchsurf::cli {
+
+namespace {
+
+struct SurfaceCommandOptions {
+  std::string sketch;
+  std::string proxy;
+  std::string output;
+  std::string report;
+  std::string regions;
+  std::string mirror;
+  std::string boundary_strokes;
+  std::optional<std::uint64_t> seed;
+  std::optional<unsigned> threads;
+};
+
+/// "x", "y", "z" (the plane through the origin with that normal) or "a,b,c,d" (a x + b y + c z +
+/// d = 0; the kept half is where it is >= 0).
+Plane parse_mirror(const std::string& text) {
+  Plane plane;
+  if (text == "x" || text == "y" || text == "z") {
+    plane.normal = Eigen::Vector3d::Unit(text[0] - 'x');
+    return plane;
+  }
+  std::vector<double> v;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw Error::usage("--mirror: '" + item + "' is not a number; use x, y, z or a,b,c,d");
+    }
+  }
+  const Eigen::Vector3d n = v.size() == 4 ? Eigen::Vector3d(v[0], v[1], v[2]) : Eigen::Vector3d::Zero();
+  if (v.size() != 4 || !(n.norm() > 0.0) || !std::isfinite(v[3]))
+    throw Error::usage("--mirror expects x, y, z or a,b,c,d with (a, b, c) != 0, got '" + text + "'");
+  plane.normal = n / n.norm();
+  plane.offset = v[3] / n.norm();
+  return plane;
+}
+
+/// "3,5,9-12": stroke ids.
+std::set<std::int64_t> parse_ids(const std::string& text) {
+  std::set<std::int64_t> ids;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      const auto dash = item.find('-', 1);
+      std::size_t used = 0;
+      if (dash == std::string::npos) {
+        ids.insert(std::stoll(item, &used));
+        if (used != item.size()) throw std::invalid_argument(item);
+      } else {
+        const std::int64_t lo = std::stoll(item.substr(0, dash)), hi = std::stoll(item.substr(dash + 1));
+        if (hi < lo || hi - lo > 1000000) throw std::invalid_argument(item);
+        for (std::int64_t i = lo; i <= hi; ++i) ids.insert(i);
+      }
+    } catch (const std::exception&) {
+      throw Error::usage("--boundary-strokes: '" + item + "' is not a stroke id or a range a-b");
+    }
+  }
+  return ids;
+}
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
+}
+
+nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
+  const SurfaceReport& rep = r.report;
+  const SegmentationSummary& seg = rep.segmentation;
+  const ExtractSummary& ex = rep.extraction;
+  nlohmann::json models = nlohmann::json::array();
+  std::vector<std::size_t> sizes(r.segmentation.models.size(), 0);
+  for (int l : r.segmentation.labels) ++sizes[l];
+  for (std::size_t i = 0; i < r.segmentation.models.size(); ++i) {
+    const ImplicitModel& m = r.segmentation.models[i];
+    models.push_back({{"label", i},
+                      {"degree", m.degree},
+                      {"vertices", sizes[i]},
+                      {"center", {m.center.x(), m.center.y(), m.center.z()}},
+                      {"scale", m.scale},
+                      {"coefficients", std::vector<double>(m.coefficients.data(),
+                                                           m.coefficients.data() + m.coefficients.size())}});
+  }
+  auto energy_terms = [](const MeshEnergyTerms& e) {
+    return nlohmann::json{{"project", e.project},         {"regularize_2d", e.regularize_2d},
+                          {"regularize_1d", e.regularize_1d}, {"attract", e.attract},
+                          {"plane", e.plane},             {"total", e.total()}};
+  };
+  return {
+      // The segmentation report (as `sketchsurf segment --report`) ...
+      {"regions", r.segmentation.models.size()},
+      {"models", models},
+      {"energy", {{"fidelity", seg.energy.fidelity}, {"smoothness", seg.energy.smoothness},
+                  {"simplicity", seg.energy.simplicity}, {"total", seg.energy.total}}},
+      {"energy_history", seg.energy_history},
+      {"iterations", seg.iterations},
+      {"converged", seg.converged},
+      {"restarts", seg.restarts},
+      {"best_restart", seg.best_restart},
+      {"restart_energies", seg.restart_energies},
+      {"initial_models", seg.initial_models},
+      {"proxy_vertices", seg.proxy_vertices},
+      {"graph_vertices", seg.graph_vertices},
+      {"associated_points", seg.associated_points},
+      {"parameters", {{"epsilon", p.segment.epsilon}, {"w_smooth", p.segment.w_smooth},
+                      {"w_simp", p.segment.w_simp}, {"mu", p.segment.mu}, {"lambda", p.segment.lambda},
+                      {"seed", p.segment.seed}, {"simplify", p.segment.simplify},
+                      {"gamma_2d", p.extract.energy.gamma_2d}, {"gamma_1d", p.extract.energy.gamma_1d},
+                      {"attract_weight", p.extract.energy.attract_weight}}},
+      // ... extended with the proxy, the final mesh and the fit to the strokes.
+      {"sketch", {{"strokes", rep.strokes}, {"points", rep.points}, {"diagonal", rep.diagonal},
+                  {"cleaning", rep.cleaning.messages}}},
+      {"proxy", {{"user", rep.user_proxy}, {"vertices", r.proxy.n_vertices()}, {"faces", r.proxy.n_faces()}}},
+      {"extraction", {{"solver", ex.optimization.solver},
+                      {"termination", ex.optimization.termination},
+                      {"solver_iterations", ex.optimization.iterations},
+                      {"usable", ex.optimization.usable},
+                      {"initial_energy", energy_terms(ex.optimization.initial)},
+                      {"final_energy", energy_terms(ex.optimization.final)},
+                      {"seam_vertices", ex.seam_vertices},
+                      {"corner_vertices", ex.corner_vertices},
+                      {"sharp_vertices", ex.sharp_vertices},
+                      {"trimmed_faces", ex.trimmed_faces},
+                      {"open", ex.open},
+                      {"mirrored", ex.mirrored}}},
+      {"mesh", {{"vertices", r.mesh.n_vertices()}, {"faces", r.mesh.n_faces()}}},
+      {"stroke_distance", {{"median", rep.stroke_distance.median},
+                           {"p95", rep.stroke_distance.p95},
+                           {"max", rep.stroke_distance.max},
+                           {"points", rep.stroke_distance.points}}},
+      {"timings", {{"prepare_s", rep.prepare_s},
+                   {"proxy_s", rep.proxy_s},
+                   {"association_s", seg.association_s},
+                   {"init_s", seg.init_s},
+                   {"segmentation_s", seg.segmentation_s},
+                   {"extraction_s", rep.extraction_s},
+                   {"total_s", rep.total_s}}},
+      {"peak_rss_mb", peak_rss_mb()}};
+}
+
+void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) {
+  Warnings warnings;
+  Sketch sketch = read_sketch(opt.sketch, &warnings);
+  print_warnings(global, opt.sketch, warnings);
+  Params params;
+  try {
+    params.apply(sketch.params);
+  } catch (const Error& e) {
+    throw Error::input(opt.sketch, e.what());
+  }
+  if (opt.seed) params.segment.seed = *opt.seed;
+  if (opt.threads) params.segment.threads = params.proxy.threads = params.extract.energy.threads = *opt.threads;
+  if (!opt.mirror.empty()) sketch.mirror = parse_mirror(opt.mirror);
+  if (!opt.boundary_strokes.empty()) {
+    sketch.assign_ids();
+    std::set<std::int64_t> ids = parse_ids(opt.boundary_strokes);
+    for (Stroke& s : sketch.strokes)
+      if (ids.erase(s.id)) s.boundary = true;
+    if (!ids.empty())
+      throw Error::usage("--boundary-strokes: the sketch has no stroke with id " + std::to_string(*ids.begin()) +
+                         "; stroke ids are the file's, or 0, 1, 2... in file order");
+  }
+  std::optional<TriMesh> proxy;
+  if (!opt.proxy.empty()) {
+    proxy = read_mesh(opt.proxy);
+    if (proxy->n_faces() == 0)
+      throw Error::input(opt.proxy, "no triangles (points or lines only); give a surface mesh");
+  }
+  if (global.verbose) {
+    std::cerr << "surface: parameters";
+    for (const auto& [k, v] : sketch.params) std::cerr << " " << k << "=" << v;
+    std::cerr << "; seed " << params.segment.seed << ", restarts " << params.segment.restarts
+              << ", gamma_2d " << params.extract.energy.gamma_2d << ", gamma_1d "
+              << params.extract.energy.gamma_1d << (sketch.mirror ? ", mirrored" : "") << "\n";
+  }
+
+  const SurfaceResult result =
+      Surfacer(params, stderr_progress(global)).run(sketch, proxy ? &*proxy : nullptr);
+
+  MeshAttributes attributes;
+  attributes.labels = result.labels;
+  attributes.sharp = result.sharp;
+  write_mesh(result.mesh, opt.output, attributes);
+  if (!opt.regions.empty()) {
+    MeshAttributes regions;
+    regions.labels = result.segmentation.labels;
+    write_mesh(result.proxy, opt.regions, regions);
+  }
+  if (!opt.report.empty()) {
+    const nlohmann::json j = report_json(result, params);
+    write_atomically(opt.report, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  }
+  if (!global.quiet)
+    std::cerr << "surface: " << result.mesh.n_vertices() << " vertices, "
+              << result.segmentation.models.size() << " regions, median stroke distance "
+              << 100.0 * result.report.stroke_distance.median << "% of the diagonal, "
+              << result.report.total_s << " s\n";
+}
+
+}  // namespace
+
+void add_surface_command(CLI::App& app, const GlobalOptions& global) {
+  auto opt = std::make_shared<SurfaceCommandOptions>();
+  auto* cmd = app.add_subcommand("surface", "Fit a piecewise-smooth surface to a sketch");
+  cmd->add_option("SKETCH", opt->sketch, "Sketch (.tilt, .curves, .obj, .json)")->required();
+  cmd->add_option("--proxy", opt->proxy,
+                  "Proxy surface mesh (.obj, .ply), attracted to the strokes; default: automatic (VIPSS)");
+  cmd->add_option("-o,--output", opt->output,
+                  "Surface (.ply with per-vertex label and sharp flag, or .obj)")
+      ->required();
+  cmd->add_option("--report", opt->report, "Write energies, models, stroke distance and timings as JSON");
+  cmd->add_option("--regions", opt->regions, "Write the segmented proxy (.ply with per-vertex label)");
+  cmd->add_option("--mirror", opt->mirror,
+                  "Symmetry plane: x, y, z or a,b,c,d (a x + b y + c z + d = 0); overrides the file's");
+  cmd->add_option("--boundary-strokes", opt->boundary_strokes,
+                  "Ids of strokes bounding an open surface, e.g. 3,5,9-12 (adds to the file's marks)");
+  cmd->add_option("--seed", opt->seed, "Random seed of the segmentation");
+  cmd->add_option("--threads", opt->threads, "Worker threads (0 = all); never changes the result");
+  cmd->callback([opt, &global] { run_surface(*opt, global); });
+}
+
+}  // namespace sketchsurf::cli
