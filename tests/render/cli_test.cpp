@@ -75,7 +75,8 @@ TEST_F(RenderCli, MeshWithRegionsAndBackground) {
 }
 
 TEST_F(RenderCli, TurntableFramesAreNumbered) {
-  const CliRun r = run("render " + sketch_ + " -o " + path("turn.png") + " --size 32x32 --turntable 3");
+  const CliRun r =
+      run("render " + sketch_ + " -o " + path("turn.png") + " --size 32x32 --turntable 3 --msaa 1");
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* name : {"turn_000.png", "turn_001.png", "turn_002.png"})
     EXPECT_TRUE(fs::exists(path(name))) << name;
@@ -87,7 +88,7 @@ TEST_F(RenderCli, TurntableFramesAreNumbered) {
 TEST_F(RenderCli, UsageErrorsExitWithCode2) {
   for (const std::string args :
        {" --size 0x10", " --size big", " --view diagonal", " --camera 1,2,3", " --background pink",
-        " --regions", " --view front --camera 0,0,5,0,0,0", " --device no-such-device-xyz"}) {
+        " --regions", " --msaa 3", " --view front --camera 0,0,5,0,0,0", " --device no-such-device-xyz"}) {
     const CliRun r = run("render " + sketch_ + " -o " + path("x.png") + args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.output;
   }

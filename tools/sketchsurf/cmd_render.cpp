@@ -24,6 +24,7 @@ struct RenderCommandOptions {
   std::string background = "#ffffff";
   std::string device;
   int turntable = 0;
+  int msaa = 4;
   bool regions = false;
   bool no_strokes = false;
   bool no_hidden = false;
@@ -115,7 +116,8 @@ void run_render(const RenderCommandOptions& opt, const GlobalOptions& global) {
     if (!global.quiet) std::cerr << "sketchsurf: " << line << "\n";
   };
   const vk::Context context(context_options);
-  render::HeadlessRenderer renderer(context, width, height);
+  render::HeadlessRenderer renderer(context, width, height,
+                                    static_cast<VkSampleCountFlagBits>(opt.msaa));
   renderer.set_scene(scene);
 
   const double aspect = double(width) / double(height);
@@ -158,6 +160,9 @@ void add_render_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--turntable", opt->turntable, "Render N frames turning around the up axis")
       ->check(CLI::Range(1, 3600));
   cmd->add_option("--background", opt->background, "Background colour #rrggbb or r,g,b in [0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--msaa", opt->msaa, "Multisampling: 1, 2 or 4 samples per pixel (fewer if unsupported)")
+      ->check(CLI::IsMember({1, 2, 4}))
       ->capture_default_str();
   cmd->add_option("--device", opt->device, "Use the Vulkan device whose name contains this");
   cmd->add_flag("--regions", opt->regions, "Colour the mesh by its vertex labels (region palette)");
