@@ -106,21 +106,23 @@ class MeshBuilder {
   void build() {
     const std::size_t nv = mesh_.n_vertices();
     positions_.resize(nv);
-    std::vector<glm::dvec3> normal_sum(nv, glm::dvec3(0.0));
     for (auto v : mesh_.vertices()) positions_[v.idx()] = relative(mesh_.point(v));
-    for (auto f : mesh_.faces()) {
-      const auto idx = face_vertices(f);
-      const glm::dvec3 n = face_area_normal(idx);  // area weighted
-      for (int k : idx) normal_sum[k] += n;
+    face_normals_.resize(mesh_.n_faces());
+    for (auto f : mesh_.faces()) face_normals_[f.idx()] = face_area_normal(face_vertices(f));
+    crease_.assign(mesh_.n_edges(), 0);
+    if (options_.sharp_angle < 180.0) {
+      const double cos_limit = std::cos(options_.sharp_angle * M_PI / 180.0);
+      for (auto e : mesh_.edges()) {
+        if (mesh_.is_boundary(e)) continue;
+        const glm::dvec3& n0 = face_normals_[mesh_.face_handle(mesh_.halfedge_handle(e, 0)).idx()];
+        const glm::dvec3& n1 = face_normals_[mesh_.face_handle(mesh_.halfedge_handle(e, 1)).idx()];
+        const double l0 = glm::length(n0), l1 = glm::length(n1);
+        crease_[e.idx()] = l0 > 0.0 && l1 > 0.0 && glm::dot(n0, n1) / (l0 * l1) < cos_limit;
+      }
     }
-    scene_.mesh_vertices.reserve(nv);
-    for (std::size_t i = 0; i < nv; ++i) {
-      const double len = glm::length(normal_sum[i]);
-      const glm::vec3 n = len > 0.0 ? glm::vec3(normal_sum[i] / len) : glm::vec3(0.0f, 0.0f, 1.0f);
-      scene_.mesh_vertices.push_back({glm::vec3(positions_[i]), n, vertex_color(int(i))});
-    }
+    add_vertices();
     scene_.mesh_indices.reserve(3 * mesh_.n_faces());
-    for (auto f : mesh_.faces()) add_face(face_vertices(f));
+    for (auto f : mesh_.faces()) add_face(face_vertices(f), corners_[f.idx()]);
     add_edges();
   }
 
@@ -150,9 +152,9 @@ class MeshBuilder {
   }
 
   /// A new vertex at the mean of `vs` with the mean normal, coloured as region `region`.
-  std::uint32_t blend_vertex(std::initializer_list<int> vs, int region) {
+  std::uint32_t blend_vertex(std::initializer_list<std::uint32_t> vs, int region) {
     glm::vec3 p(0.0f), n(0.0f);
-    for (int v : vs) {
+    for (std::uint32_t v : vs) {
       p += scene_.mesh_vertices[v].position;
       n += scene_.mesh_vertices[v].normal;
     }
@@ -174,63 +176,95 @@ class MeshBuilder {
     ++scene_.outlined_edges;
   }
 
+  /// One render vertex per smooth fan of faces around each mesh vertex: faces meeting across a
+  /// crease get separate vertices (and normals), so creases stay sharp under smooth shading.
+  void add_vertices() {
+    corners_.assign(mesh_.n_faces(), {0, 0, 0});
+    scene_.mesh_vertices.reserve(mesh_.n_vertices());
+    std::vector<int> faces, group;
+    for (auto v : mesh_.vertices()) {
+      faces.clear();
+      for (auto f : mesh_.vf_range(v)) faces.push_back(f.idx());
+      group.resize(faces.size());
+      for (std::size_t i = 0; i < faces.size(); ++i) group[i] = int(i);
+      const auto slot = [&](int face) {
+        return int(std::find(faces.begin(), faces.end(), face) - faces.begin());
+      };
+      for (auto h : mesh_.voh_range(v)) {
+        const auto f0 = mesh_.face_handle(h), f1 = mesh_.opposite_face_handle(h);
+        if (!f0.is_valid() || !f1.is_valid() || crease_[mesh_.edge_handle(h).idx()]) continue;
+        const int g0 = group[slot(f0.idx())], g1 = group[slot(f1.idx())];
+        for (int& g : group)
+          if (g == g1) g = g0;
+      }
+      for (std::size_t i = 0; i < faces.size(); ++i) {
+        if (group[i] != int(i) && std::find(group.begin(), group.begin() + i, group[i]) != group.begin() + i)
+          continue;  // this fan already has its vertex
+        glm::dvec3 sum(0.0);
+        for (std::size_t j = 0; j < faces.size(); ++j)
+          if (group[j] == group[i]) sum += face_normals_[faces[j]];  // area weighted
+        const double len = glm::length(sum);
+        const glm::vec3 n = len > 0.0 ? glm::vec3(sum / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+        const auto index = static_cast<std::uint32_t>(scene_.mesh_vertices.size());
+        scene_.mesh_vertices.push_back({glm::vec3(positions_[v.idx()]), n, vertex_color(v.idx())});
+        for (std::size_t j = 0; j < faces.size(); ++j)
+          if (group[j] == group[i]) {
+            const auto corners = face_vertices(mesh_.face_handle(faces[j]));
+            for (int k = 0; k < 3; ++k)
+              if (corners[k] == v.idx()) corners_[faces[j]][k] = index;
+          }
+      }
+    }
+  }
+
   /// Adds a face; with regions, a face whose corners carry different labels is split along the
   /// midpoints of its mixed edges so that each part has one colour and the boundary is a clean
   /// curve through edge midpoints (drawn as an outline).
-  void add_face(std::array<int, 3> idx) {
-    const auto u = [](int v) { return static_cast<std::uint32_t>(v); };
+  void add_face(std::array<int, 3> idx, std::array<std::uint32_t, 3> corner) {
     if (!regions_ || (label(idx[0]) == label(idx[1]) && label(idx[1]) == label(idx[2]))) {
-      triangle(u(idx[0]), u(idx[1]), u(idx[2]));
+      triangle(corner[0], corner[1], corner[2]);
       return;
     }
     const int l0 = label(idx[0]), l1 = label(idx[1]), l2 = label(idx[2]);
     if (l0 != l1 && l1 != l2 && l0 != l2) {
       // Three regions: each corner keeps the quad (corner, edge midpoint, centroid, edge midpoint).
       for (int k = 0; k < 3; ++k) {
-        const int a = idx[k], b = idx[(k + 1) % 3], c = idx[(k + 2) % 3];
-        const std::uint32_t m_ab = blend_vertex({a, b}, label(a));
-        const std::uint32_t centre = blend_vertex({a, b, c}, label(a));
-        const std::uint32_t m_ca = blend_vertex({c, a}, label(a));
-        triangle(u(a), m_ab, centre);
-        triangle(u(a), centre, m_ca);
+        const std::uint32_t a = corner[k], b = corner[(k + 1) % 3], c = corner[(k + 2) % 3];
+        const int region = label(idx[k]);
+        const std::uint32_t m_ab = blend_vertex({a, b}, region);
+        const std::uint32_t centre = blend_vertex({a, b, c}, region);
+        const std::uint32_t m_ca = blend_vertex({c, a}, region);
+        triangle(a, m_ab, centre);
+        triangle(a, centre, m_ca);
         boundary_segment(m_ab, centre);
       }
       return;
     }
     // Two regions: rotate (keeping the winding) so that idx[2] is the odd corner.
-    while (label(idx[0]) != label(idx[1])) std::rotate(idx.begin(), idx.begin() + 1, idx.end());
+    while (label(idx[0]) != label(idx[1])) {
+      std::rotate(idx.begin(), idx.begin() + 1, idx.end());
+      std::rotate(corner.begin(), corner.begin() + 1, corner.end());
+    }
     const int a = label(idx[0]), b = label(idx[2]);
-    const std::uint32_t m12a = blend_vertex({idx[1], idx[2]}, a);
-    const std::uint32_t m20a = blend_vertex({idx[2], idx[0]}, a);
-    const std::uint32_t m12b = blend_vertex({idx[1], idx[2]}, b);
-    const std::uint32_t m20b = blend_vertex({idx[2], idx[0]}, b);
-    triangle(u(idx[0]), u(idx[1]), m12a);
-    triangle(u(idx[0]), m12a, m20a);
-    triangle(m20b, m12b, u(idx[2]));
+    const std::uint32_t m12a = blend_vertex({corner[1], corner[2]}, a);
+    const std::uint32_t m20a = blend_vertex({corner[2], corner[0]}, a);
+    const std::uint32_t m12b = blend_vertex({corner[1], corner[2]}, b);
+    const std::uint32_t m20b = blend_vertex({corner[2], corner[0]}, b);
+    triangle(corner[0], corner[1], m12a);
+    triangle(corner[0], m12a, m20a);
+    triangle(m20b, m12b, corner[2]);
     boundary_segment(m12a, m20a);
   }
 
   /// Creases (dihedral angle above the threshold), mesh boundary edges and the wireframe.
   void add_edges() {
-    const bool creases = options_.sharp_angle < 180.0;
-    if (!creases && !options_.wireframe) return;
-    const double cos_limit = std::cos(options_.sharp_angle * M_PI / 180.0);
+    const bool outlines = options_.sharp_angle < 180.0;
+    if (!outlines && !options_.wireframe) return;
     for (auto e : mesh_.edges()) {
-      const auto h0 = mesh_.halfedge_handle(e, 0), h1 = mesh_.halfedge_handle(e, 1);
-      const glm::vec3 a(positions_[mesh_.from_vertex_handle(h0).idx()]);
-      const glm::vec3 b(positions_[mesh_.to_vertex_handle(h0).idx()]);
-      bool outline = false;
-      if (creases) {
-        if (mesh_.is_boundary(e)) {
-          outline = true;
-        } else {
-          const glm::dvec3 n0 = face_area_normal(face_vertices(mesh_.face_handle(h0)));
-          const glm::dvec3 n1 = face_area_normal(face_vertices(mesh_.face_handle(h1)));
-          const double l0 = glm::length(n0), l1 = glm::length(n1);
-          outline = l0 > 0.0 && l1 > 0.0 && glm::dot(n0, n1) / (l0 * l1) < cos_limit;
-        }
-      }
-      if (outline) {
+      const auto h = mesh_.halfedge_handle(e, 0);
+      const glm::vec3 a(positions_[mesh_.from_vertex_handle(h).idx()]);
+      const glm::vec3 b(positions_[mesh_.to_vertex_handle(h).idx()]);
+      if (outlines && (crease_[e.idx()] || mesh_.is_boundary(e))) {
         ribbons_.add({a, b}, pack(kSharpEdgeColor), edge_half_width_);
         ++scene_.outlined_edges;
       } else if (options_.wireframe) {
@@ -248,7 +282,10 @@ class MeshBuilder {
   bool regions_ = false;
   float edge_half_width_ = 0.0f;
   float wire_half_width_ = 0.0f;
-  std::vector<glm::dvec3> positions_;
+  std::vector<glm::dvec3> positions_;                  // per mesh vertex, scene-relative
+  std::vector<glm::dvec3> face_normals_;               // per face, area weighted
+  std::vector<char> crease_;                           // per edge
+  std::vector<std::array<std::uint32_t, 3>> corners_;  // per face: its render vertices
 };
 
 }  // namespace

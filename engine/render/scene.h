@@ -22,8 +22,9 @@ struct SceneOptions {
   bool stroke_colors = false;    ///< strokes in their own colours (else palette.h kStrokeColor)
   bool regions = false;          ///< colour the mesh by vertex labels (palette.h), when it has them
   bool region_boundaries = true; ///< with `regions`: outline the curves between regions
-  double sharp_angle = 45.0;     ///< outline mesh edges with a dihedral angle above this, degrees;
-                                 ///< mesh boundary edges too; >= 180 turns it off
+  double sharp_angle = 45.0;     ///< edges with a dihedral angle above this (degrees) are creases:
+                                 ///< outlined and not smoothed across; mesh boundary edges are
+                                 ///< outlined too; >= 180 turns both off
   bool wireframe = false;        ///< draw every mesh edge thinly
   double edge_width = 0.004;     ///< ribbon width of outlined edges, fraction of the bbox diagonal
   double wire_width = 0.0015;    ///< ribbon width of wireframe edges, fraction of the bbox diagonal
