@@ -18,6 +18,8 @@ struct GlobalOptions {
 
 void add_info_command(CLI::App& app, const GlobalOptions& global);
 void add_convert_command(CLI::App& app, const GlobalOptions& global);
+/// `proxy` (cmd_proxy.cpp): the proxy surface, VIPSS or an attracted user mesh (paper §5).
+void add_proxy_command(CLI::App& app, const GlobalOptions& global);
 /// `segment` (cmd_segment.cpp): proxy labelled into smooth regions, paper §4.1-4.2.
 void add_segment_command(CLI::App& app, const GlobalOptions& global);
 /// `surface` (cmd_surface.cpp): the final piecewise-smooth surface, the whole method (paper §4-5).

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
 
   cli::add_info_command(app, global);
   cli::add_convert_command(app, global);
+  cli::add_proxy_command(app, global);
   cli::add_segment_command(app, global);
   cli::add_surface_command(app, global);
 #ifdef SKETCHSURF_HAVE_ENGINE

@@ -1,0 +1,126 @@
+// sketchsurf proxy SKETCH -o proxy.(obj|ply) [--points N] [--lambda F] [--edge F] [--from MESH]
+// [--report report.json]: the proxy surface (paper §5 "Proxy creation"), automatic (VIPSS) or a
+// user mesh attracted to the strokes.
+
+#include <sys/resource.h>
+
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "surfacing/proxy/proxy.h"
+#include "surfacing/sketch/io/atomic_file.h"
+#include "surfacing/sketch/io/mesh_io.h"
+#include "tools/sketchsurf/commands.h"
+
+namespace sketchsurf::cli {
+
+namespace {
+
+struct ProxyCommandOptions {
+  std::string sketch;
+  std::string output;
+  std::string from;
+  std::string report;
+  ProxyOptions proxy;
+};
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
+}
+
+nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt) {
+  nlohmann::json j = {
+      {"mode", opt.from.empty() ? "vipss" : "attract"},
+      {"samples", r.samples},
+      {"vertices", r.vertices},
+      {"faces", r.faces},
+      {"components", r.topology.components},
+      {"genus", r.topology.genus},
+      {"euler_characteristic", r.topology.euler},
+      {"boundary_loops", r.topology.boundary_loops},
+      {"parameters", {{"points", opt.proxy.points}, {"lambda", opt.proxy.lambda},
+                      {"edge", opt.proxy.edge}, {"cell", opt.proxy.cell}}},
+      {"timings", {{"sampling_s", r.sampling_seconds}, {"vipss_s", r.vipss_seconds},
+                   {"polygonize_s", r.polygonize_seconds}, {"remesh_s", r.remesh_seconds},
+                   {"attract_s", r.attract_seconds}, {"total_s", r.total_seconds}}},
+      {"peak_rss_mb", peak_rss_mb()}};
+  if (opt.from.empty())
+    j["vipss"] = {{"initial_energy", r.vipss.initial_energy},
+                  {"final_energy", r.vipss.final_energy},
+                  {"lanczos_products", r.vipss.eigen_matvecs},
+                  {"lbfgs_iterations", r.vipss.lbfgs_iterations},
+                  {"termination", r.vipss.termination},
+                  {"evaluations", r.evaluations}};
+  else
+    j["attraction"] = {{"anchors", r.anchors},
+                       {"median_distance_before", r.median_distance_before},
+                       {"median_distance_after", r.median_distance_after}};
+  return j;
+}
+
+void run_proxy(const ProxyCommandOptions& opt, const GlobalOptions& global) {
+  std::string why;
+  if (!opt.proxy.valid(&why)) throw Error::usage(why);
+  const std::string ext = std::filesystem::path(opt.output).extension().string();
+  if (ext != ".obj" && ext != ".ply")
+    throw Error::usage("proxy output must be .obj or .ply, got '" + opt.output + "'");
+  Warnings warnings;
+  Sketch sketch = read_sketch(opt.sketch, &warnings);
+  print_warnings(global, opt.sketch, warnings);
+  const CleanReport cleaning = clean(sketch);
+  if (!global.quiet)
+    for (const auto& m : cleaning.messages) std::cerr << opt.sketch << ": cleaned: " << m << "\n";
+  if (global.verbose)
+    std::cerr << "proxy: points " << opt.proxy.points << ", lambda " << opt.proxy.lambda
+              << ", edge " << opt.proxy.edge << ", cell " << opt.proxy.cell << ", threads "
+              << opt.proxy.threads << (opt.from.empty() ? "" : ", from " + opt.from) << "\n";
+
+  const Progress progress(stderr_progress(global));
+  ProxyReport report;
+  TriMesh mesh;
+  try {
+    mesh = opt.from.empty() ? make_proxy(sketch, opt.proxy, progress, &report)
+                            : attract_proxy(read_mesh(opt.from), sketch, opt.proxy, progress, &report);
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Processing) throw;
+    throw Error::processing(opt.sketch + ": " + e.what());
+  }
+  write_mesh(mesh, opt.output);
+  if (!opt.report.empty()) {
+    const nlohmann::json j = report_json(report, opt);
+    write_atomically(opt.report, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  }
+  if (!global.quiet)
+    std::cerr << "proxy: " << report.vertices << " vertices, " << report.faces << " faces, "
+              << report.topology.components << " component(s), genus " << report.topology.genus
+              << ", " << report.total_seconds << " s\n";
+}
+
+}  // namespace
+
+void add_proxy_command(CLI::App& app, const GlobalOptions& global) {
+  auto opt = std::make_shared<ProxyCommandOptions>();
+  auto* cmd = app.add_subcommand("proxy", "Build the proxy surface: VIPSS on the strokes, or "
+                                          "attract a rough user mesh (--from) to them");
+  cmd->add_option("SKETCH", opt->sketch, "Sketch (.tilt, .curves, .obj, .json)")->required();
+  cmd->add_option("-o,--output", opt->output, "Proxy mesh (.obj or .ply)")->required();
+  cmd->add_option("--points", opt->proxy.points, "VIPSS sample points")
+      ->capture_default_str()
+      ->check(CLI::Range(10, 20000));
+  cmd->add_option("--lambda", opt->proxy.lambda, "VIPSS smoothing, 0 = interpolate the samples")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--edge", opt->proxy.edge, "Target edge length, fraction of the bbox diagonal")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--from", opt->from, "Rough user proxy (.obj, .ply) to attract to the strokes")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--report", opt->report, "Write counts, genus and per-stage timings as JSON");
+  cmd->add_option("--threads", opt->proxy.threads, "Worker threads (0 = all)")->capture_default_str();
+  cmd->callback([opt, &global] { run_proxy(*opt, global); });
+}
+
+}  // namespace sketchsurf::cli
