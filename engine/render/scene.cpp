@@ -198,7 +198,7 @@ class MeshBuilder {
           if (g == g1) g = g0;
       }
       for (std::size_t i = 0; i < faces.size(); ++i) {
-        if (group[i] != int(i) && std::find(group.begin(), group.begin() + i, group[i]) != group.begin() + i)
+        if (std::find(group.begin(), group.begin() + i, group[i]) != group.begin() + i)
           continue;  // this fan already has its vertex
         glm::dvec3 sum(0.0);
         for (std::size_t j = 0; j < faces.size(); ++j)

@@ -7,7 +7,7 @@
 #include "engine/render/scene.h"
 #include "engine/vk/context.h"
 #include "surfacing/error.h"
-#include "tests/support/shapes.h"
+#include "tests/render/render_support.h"
 
 namespace sketchsurf::testing {
 namespace {
@@ -126,6 +126,25 @@ TEST(Scene, CreasesOfABoxAreOutlined) {
   const TriMesh torus = torus_mesh(6, 4, 1.0, 0.3);  // coarse: 90-degree tube angles
   EXPECT_GT(build_scene(Sketch{}, &torus).outlined_edges, 0u);
   EXPECT_EQ(build_scene(Sketch{}, &torus, nullptr, off).outlined_edges, 0u);
+}
+
+TEST(Scene, CreasesSplitNormals) {
+  // A box of flat n x n grids: split at its 90-degree creases, every face keeps its own
+  // vertices, 6 (n+1)^2 of them, with the face's normal exactly; smoothing everything instead
+  // gives one vertex per mesh vertex and tilted normals along the edges.
+  const int n = 3;
+  const TriMesh box = box_grid_mesh(n, Eigen::Vector3d(1.0, 0.5, 0.25));
+  const auto sharp = build_scene(Sketch{}, &box);
+  EXPECT_EQ(sharp.mesh_vertices.size(), std::size_t(6 * (n + 1) * (n + 1)));
+  for (const auto& v : sharp.mesh_vertices)
+    EXPECT_NEAR(glm::max(glm::max(std::abs(v.normal.x), std::abs(v.normal.y)), std::abs(v.normal.z)),
+                1.0f, 1e-6f);
+  EXPECT_EQ(sharp.outlined_edges, std::size_t(12 * n));
+  render::SceneOptions smooth;
+  smooth.sharp_angle = 180.0;
+  const auto soft = build_scene(Sketch{}, &box, nullptr, smooth);
+  EXPECT_EQ(soft.mesh_vertices.size(), box.n_vertices());
+  EXPECT_EQ(soft.outlined_edges, 0u);
 }
 
 TEST(Scene, BadInputIsAnError) {
