@@ -25,7 +25,7 @@ constexpr std::int64_t kVersion = 1;
 // Reading: a handler of parser events that streams straight into the Sketch. A DOM of a 1M-point
 // file would hold 3M+ json values (hundreds of MB); the handler keeps only a stack of where it is.
 
-/// One JSON value as the SAX parser delivers it.
+/// One JSON value as JsonParser delivers it.
 struct Value {
   enum class Kind { Null, Boolean, Integer, Unsigned, Float, String, Object, Array };
   explicit Value(Kind k) : kind(k) {}
