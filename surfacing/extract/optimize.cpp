@@ -6,6 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <memory>
+
+#include <Eigen/Sparse>
 
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
@@ -107,31 +110,162 @@ ceres::CostFunction* PlaneResidual::Create(const Plane& plane, double weight) {
 
 namespace {
 
-using Ids = std::vector<ceres::ResidualBlockId>;
-
-/// The residual blocks of each term, to evaluate the terms apart.
-struct TermBlocks {
-  Ids project, regularize_2d, regularize_1d, attract, plane;
+/// One Eq. 8 term: vertex, model, 1 / |labels|, gradient floor.
+struct ProjectionTerm {
+  int vertex = 0;
+  int model = 0;
+  double weight = 1.0;
+  double floor = 0.0;
 };
 
-double term_energy(ceres::Problem& problem, const Ids& ids) {
-  if (ids.empty()) return 0.0;
-  ceres::Problem::EvaluateOptions eval;
-  eval.residual_blocks = ids;
-  eval.num_threads = 1;
-  double cost = 0.0;
-  problem.Evaluate(eval, &cost, nullptr, nullptr, nullptr);
-  return 2.0 * cost;  // Ceres' cost is half the sum of squares
+/// One Laplacian term of Eq. 9: the centre vertex first, then its neighbours.
+struct LaplacianTerm {
+  std::vector<int> vertices;
+  double weight = 0.0;
+  Eigen::Matrix3d projection = Eigen::Matrix3d::Identity();
+};
+
+/// E_mesh as lists of terms: built once, then either handed to Ceres as residual blocks
+/// (trust-region solvers) or evaluated in one pass as a first-order function (L-BFGS).
+struct MeshEnergy {
+  const std::vector<ImplicitModel>* models = nullptr;
+  std::vector<ProjectionTerm> project;
+  std::vector<LaplacianTerm> regularize_2d, regularize_1d;
+  std::vector<AttractTarget> attract;
+  double attract_weight = 1.0;
+  std::optional<Plane> plane;
+  std::vector<int> plane_vertices;
+  double plane_weight = 1.0;
+};
+
+/// The Laplacian terms as one sparse matrix L (3 rows per term, 3 columns per vertex), so that
+/// their energy is |L x|^2 and its gradient 2 L^T L x: the "precomputed gradient matrices for the
+/// quadratic terms" of §4.3.
+Eigen::SparseMatrix<double, Eigen::RowMajor> laplacian_matrix(const std::vector<LaplacianTerm>& terms,
+                                                              int n) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t t = 0; t < terms.size(); ++t) {
+    const auto& term = terms[t];
+    const double s = std::sqrt(term.weight);
+    const double k = static_cast<double>(term.vertices.size() - 1);
+    for (std::size_t j = 0; j < term.vertices.size(); ++j) {
+      const double c = j == 0 ? s : -s / k;
+      for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q)
+          if (term.projection(r, q) != 0.0)
+            entries.emplace_back(3 * t + r, 3 * term.vertices[j] + q, c * term.projection(r, q));
+    }
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> L(3 * terms.size(), 3 * n);
+  L.setFromTriplets(entries.begin(), entries.end());
+  return L;
 }
 
-MeshEnergyTerms energies(ceres::Problem& problem, const TermBlocks& blocks) {
-  MeshEnergyTerms e;
-  e.project = term_energy(problem, blocks.project);
-  e.regularize_2d = term_energy(problem, blocks.regularize_2d);
-  e.regularize_1d = term_energy(problem, blocks.regularize_1d);
-  e.attract = term_energy(problem, blocks.attract);
-  e.plane = term_energy(problem, blocks.plane);
-  return e;
+/// E_mesh evaluated in one pass for L-BFGS. Cost is half the sum of squares, as in Ceres.
+class MeshEnergyFunction final : public ceres::FirstOrderFunction {
+ public:
+  MeshEnergyFunction(const MeshEnergy& energy, int n, unsigned threads)
+      : energy_(energy),
+        n_(n),
+        threads_(threads),
+        l2d_(laplacian_matrix(energy.regularize_2d, n)),
+        l1d_(laplacian_matrix(energy.regularize_1d, n)),
+        project_values_(energy.project.size()),
+        project_gradients_(energy.project.size()) {}
+
+  int NumParameters() const override { return 3 * n_; }
+
+  bool Evaluate(const double* x, double* cost, double* gradient) const override {
+    const Eigen::Map<const Eigen::VectorXd> X(x, 3 * n_);
+    // Projection: each term alone (in parallel), accumulated in a fixed order.
+    using Jet = ceres::Jet<double, 3>;
+    parallel_for(0, energy_.project.size(), threads_, [&](std::size_t i) {
+      const ProjectionTerm& t = energy_.project[i];
+      const detail::ProjectionResidual r{&(*energy_.models)[t.model], std::sqrt(t.weight), t.floor};
+      Jet p[3], value;
+      for (int c = 0; c < 3; ++c) p[c] = Jet(x[3 * t.vertex + c], c);
+      r(p, &value);
+      project_values_[i] = value.a;
+      project_gradients_[i] = value.v;
+    });
+    double total = 0.0;
+    Eigen::Map<Eigen::VectorXd> G(gradient, gradient ? 3 * n_ : 0);
+    if (gradient) G.setZero();
+    for (std::size_t i = 0; i < energy_.project.size(); ++i) {
+      total += 0.5 * project_values_[i] * project_values_[i];
+      if (gradient) G.segment<3>(3 * energy_.project[i].vertex) += project_values_[i] * project_gradients_[i];
+    }
+    for (const auto* L : {&l2d_, &l1d_}) {
+      const Eigen::VectorXd r = (*L) * X;
+      total += 0.5 * r.squaredNorm();
+      if (gradient) G.noalias() += L->transpose() * r;
+    }
+    const double sa = energy_.attract_weight;
+    for (const AttractTarget& t : energy_.attract) {
+      const Eigen::Vector3d d = X.segment<3>(3 * t.vertex) - t.point;
+      total += 0.5 * sa * d.squaredNorm();
+      if (gradient) G.segment<3>(3 * t.vertex) += sa * d;
+    }
+    for (int v : energy_.plane_vertices) {
+      const double d = energy_.plane->signed_distance(X.segment<3>(3 * v));
+      total += 0.5 * energy_.plane_weight * d * d;
+      if (gradient) G.segment<3>(3 * v) += energy_.plane_weight * d * energy_.plane->normal;
+    }
+    *cost = total;
+    return std::isfinite(total);
+  }
+
+  /// The terms apart, each a plain sum of squares.
+  MeshEnergyTerms terms(const double* x) const {
+    MeshEnergyTerms e;
+    const Eigen::Map<const Eigen::VectorXd> X(x, 3 * n_);
+    for (const ProjectionTerm& t : energy_.project) {
+      const detail::ProjectionResidual r{&(*energy_.models)[t.model], std::sqrt(t.weight), t.floor};
+      double value = 0.0;
+      r(x + 3 * t.vertex, &value);
+      e.project += value * value;
+    }
+    e.regularize_2d = (l2d_ * X).squaredNorm();
+    e.regularize_1d = (l1d_ * X).squaredNorm();
+    for (const AttractTarget& t : energy_.attract)
+      e.attract += energy_.attract_weight * (X.segment<3>(3 * t.vertex) - t.point).squaredNorm();
+    for (int v : energy_.plane_vertices)
+      e.plane += energy_.plane_weight * std::pow(energy_.plane->signed_distance(X.segment<3>(3 * v)), 2);
+    return e;
+  }
+
+ private:
+  const MeshEnergy& energy_;
+  int n_;
+  unsigned threads_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> l2d_, l1d_;
+  mutable std::vector<double> project_values_;
+  mutable std::vector<Eigen::Vector3d> project_gradients_;
+};
+
+/// The same terms as Ceres residual blocks (trust-region solvers).
+void add_residual_blocks(const MeshEnergy& energy, std::vector<double>& x, ceres::Problem& problem) {
+  const int n = static_cast<int>(x.size() / 3);
+  for (int v = 0; v < n; ++v) problem.AddParameterBlock(&x[3 * v], 3);
+  for (const ProjectionTerm& t : energy.project)
+    problem.AddResidualBlock(
+        detail::ProjectionResidual::Create((*energy.models)[t.model], t.weight, t.floor), nullptr,
+        &x[3 * t.vertex]);
+  std::vector<double*> params;
+  for (const auto* terms : {&energy.regularize_2d, &energy.regularize_1d})
+    for (const LaplacianTerm& t : *terms) {
+      params.clear();
+      for (int v : t.vertices) params.push_back(&x[3 * v]);
+      problem.AddResidualBlock(
+          detail::LaplacianCost::Create(static_cast<int>(t.vertices.size()) - 1, t.weight, t.projection),
+          nullptr, params);
+    }
+  for (const AttractTarget& t : energy.attract)
+    problem.AddResidualBlock(detail::AttractResidual::Create(t.point, energy.attract_weight), nullptr,
+                             &x[3 * t.vertex]);
+  for (int v : energy.plane_vertices)
+    problem.AddResidualBlock(detail::PlaneResidual::Create(*energy.plane, energy.plane_weight), nullptr,
+                             &x[3 * v]);
 }
 
 /// Reports progress per iteration; a cancellation stops Ceres and is rethrown after Solve.
@@ -158,29 +292,75 @@ class CeresProgress final : public ceres::IterationCallback {
   std::exception_ptr error_;
 };
 
-void configure(const MeshEnergyOptions& options, ceres::Solver::Options& solver) {
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = options.function_tolerance;
-  solver.gradient_tolerance = 1e-14;
-  solver.parameter_tolerance = 1e-12;
-  solver.num_threads = static_cast<int>(resolve_threads(options.threads));
-  solver.logging_type = ceres::SILENT;
-  switch (options.solver) {
-    case MeshSolver::SparseCholesky:
-      solver.minimizer_type = ceres::TRUST_REGION;
-      solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-      solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
-      break;
-    case MeshSolver::ConjugateGradients:
-      solver.minimizer_type = ceres::TRUST_REGION;
-      solver.linear_solver_type = ceres::CGNR;
-      solver.preconditioner_type = ceres::JACOBI;
-      break;
-    case MeshSolver::Lbfgs:
-      solver.minimizer_type = ceres::LINE_SEARCH;
-      solver.line_search_direction_type = ceres::LBFGS;
-      break;
+/// Builds the terms of E_mesh for the mesh at its current positions.
+MeshEnergy build_energy(const LabeledMesh& lm, const std::vector<ImplicitModel>& models,
+                        const MeshConstraints& constraints, const MeshEnergyOptions& options) {
+  const TriMesh& mesh = lm.mesh;
+  const int n = static_cast<int>(mesh.n_vertices());
+  MeshEnergy energy;
+  energy.models = &models;
+
+  // E_project (Eq. 8). The gradient floor is relative to each model's typical gradient.
+  std::vector<std::vector<double>> gradients(models.size());
+  for (int v = 0; v < n; ++v)
+    for (int l : lm.labels[v])
+      gradients[l].push_back(models[l].gradient(to_eigen(mesh.point(TriMesh::VertexHandle(v)))).norm());
+  std::vector<double> floor(models.size(), 0.0);
+  for (std::size_t l = 0; l < models.size(); ++l) {
+    auto& g = gradients[l];
+    if (g.empty()) continue;
+    std::nth_element(g.begin(), g.begin() + g.size() / 2, g.end());
+    floor[l] = 1e-3 * g[g.size() / 2];
   }
+  for (int v = 0; v < n; ++v)
+    for (int l : lm.labels[v]) energy.project.push_back({v, l, 1.0 / lm.labels[v].size(), floor[l]});
+
+  // E_regularize (Eq. 9).
+  const std::vector<double> w = regularization_weights(lm, models, options);
+  std::vector<bool> on_plane(n, false), attracted(n, false);
+  for (int v : constraints.plane_vertices) on_plane[v] = true;
+  for (const auto& t : constraints.attract) attracted[t.vertex] = true;
+  Eigen::Matrix3d in_plane = Eigen::Matrix3d::Identity();
+  if (constraints.plane) in_plane -= constraints.plane->normal * constraints.plane->normal.transpose();
+  for (auto v : mesh.vertices()) {
+    const int i = v.idx();
+    const bool boundary = mesh.is_boundary(v);
+    if (boundary && !on_plane[i]) {
+      // Open boundary: 1D Laplacian along the boundary, unless E_attract holds the vertex (the
+      // boundary strokes then give its shape, corners included).
+      if (attracted[i]) continue;
+      LaplacianTerm term{{i}, options.gamma_1d, Eigen::Matrix3d::Identity()};
+      for (auto h : v.outgoing_halfedges())
+        if (h.is_boundary() || h.opp().is_boundary()) term.vertices.push_back(h.to().idx());
+      if (term.vertices.size() == 3 && options.gamma_1d > 0.0) energy.regularize_1d.push_back(term);
+      continue;
+    }
+    if (w[i] > 0.0 && options.gamma_2d > 0.0) {
+      LaplacianTerm term{{i}, options.gamma_2d * w[i],
+                         on_plane[i] ? in_plane : Eigen::Matrix3d::Identity()};
+      for (auto u : v.vertices()) term.vertices.push_back(u.idx());
+      if (term.vertices.size() > 1) energy.regularize_2d.push_back(std::move(term));
+    }
+    if (lm.labels[i].size() == 2 && !boundary && options.gamma_1d > 0.0) {
+      // 1D Laplacian along the seam: neighbours that are seam vertices of the same two regions.
+      LaplacianTerm term{{i}, options.gamma_1d, Eigen::Matrix3d::Identity()};
+      const auto& mine = lm.labels[i];
+      for (auto u : v.vertices()) {
+        const auto& theirs = lm.labels[u.idx()];
+        if (theirs.size() >= 2 && std::includes(theirs.begin(), theirs.end(), mine.begin(), mine.end()))
+          term.vertices.push_back(u.idx());
+      }
+      if (term.vertices.size() == 3) energy.regularize_1d.push_back(std::move(term));
+    }
+  }
+
+  // E_attract (Eq. 13) and the mirror plane.
+  energy.attract = constraints.attract;
+  energy.attract_weight = options.attract_weight;
+  energy.plane = constraints.plane;
+  energy.plane_vertices = constraints.plane_vertices;
+  energy.plane_weight = options.plane_weight;
+  return energy;
 }
 
 }  // namespace
@@ -212,115 +392,70 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     const auto& p = mesh.point(v);
     for (int c = 0; c < 3; ++c) x[3 * v.idx() + c] = p[c];
   }
-
-  ceres::Problem problem;
-  for (int v = 0; v < n; ++v) problem.AddParameterBlock(&x[3 * v], 3);
-  TermBlocks blocks;
-
-  // E_project (Eq. 8). The gradient floor is relative to each model's typical gradient.
-  std::vector<std::vector<double>> gradients(models.size());
-  for (int v = 0; v < n; ++v)
-    for (int l : lm.labels[v])
-      gradients[l].push_back(models[l].gradient(to_eigen(mesh.point(TriMesh::VertexHandle(v)))).norm());
-  std::vector<double> floor(models.size(), 0.0);
-  for (std::size_t l = 0; l < models.size(); ++l) {
-    auto& g = gradients[l];
-    if (g.empty()) continue;
-    std::nth_element(g.begin(), g.begin() + g.size() / 2, g.end());
-    floor[l] = 1e-3 * g[g.size() / 2];
-  }
-  for (int v = 0; v < n; ++v) {
-    const double weight = 1.0 / lm.labels[v].size();
-    for (int l : lm.labels[v])
-      blocks.project.push_back(problem.AddResidualBlock(
-          detail::ProjectionResidual::Create(models[l], weight, floor[l]), nullptr, &x[3 * v]));
-  }
-
-  // E_regularize (Eq. 9).
-  const std::vector<double> w = regularization_weights(lm, models, options);
-  std::vector<bool> on_plane(n, false), attracted(n, false);
-  for (int v : constraints.plane_vertices) on_plane[v] = true;
-  for (const auto& t : constraints.attract) attracted[t.vertex] = true;
-  Eigen::Matrix3d in_plane = Eigen::Matrix3d::Identity();
-  if (constraints.plane) in_plane -= constraints.plane->normal * constraints.plane->normal.transpose();
-  std::vector<double*> params;
-  for (auto v : mesh.vertices()) {
-    const int i = v.idx();
-    const bool boundary = mesh.is_boundary(v);
-    if (boundary && !on_plane[i]) {
-      // Open boundary: 1D Laplacian along the boundary, unless E_attract holds the vertex (the
-      // boundary strokes then give its shape, corners included).
-      if (attracted[i]) continue;
-      params = {&x[3 * i]};
-      for (auto h : v.outgoing_halfedges())
-        if (h.is_boundary() || h.opp().is_boundary()) params.push_back(&x[3 * h.to().idx()]);
-      if (params.size() == 3 && options.gamma_1d > 0.0)
-        blocks.regularize_1d.push_back(problem.AddResidualBlock(
-            detail::LaplacianCost::Create(2, options.gamma_1d), nullptr, params));
-      continue;
-    }
-    if (w[i] > 0.0 && options.gamma_2d > 0.0) {
-      params = {&x[3 * i]};
-      for (auto u : v.vertices()) params.push_back(&x[3 * u.idx()]);
-      if (params.size() > 1)
-        blocks.regularize_2d.push_back(problem.AddResidualBlock(
-            detail::LaplacianCost::Create(static_cast<int>(params.size()) - 1,
-                                          options.gamma_2d * w[i],
-                                          on_plane[i] ? in_plane : Eigen::Matrix3d::Identity()),
-            nullptr, params));
-    }
-    if (lm.labels[i].size() == 2 && !boundary && options.gamma_1d > 0.0) {
-      // 1D Laplacian along the seam: neighbours that are seam vertices of the same two regions.
-      params = {&x[3 * i]};
-      const auto& mine = lm.labels[i];
-      for (auto u : v.vertices()) {
-        const auto& theirs = lm.labels[u.idx()];
-        if (theirs.size() >= 2 && std::includes(theirs.begin(), theirs.end(), mine.begin(), mine.end()))
-          params.push_back(&x[3 * u.idx()]);
-      }
-      if (params.size() == 3)
-        blocks.regularize_1d.push_back(problem.AddResidualBlock(
-            detail::LaplacianCost::Create(2, options.gamma_1d), nullptr, params));
-    }
-  }
-
-  // E_attract (Eq. 13) and the mirror plane.
-  for (const auto& t : constraints.attract)
-    blocks.attract.push_back(problem.AddResidualBlock(
-        detail::AttractResidual::Create(t.point, options.attract_weight), nullptr,
-        &x[3 * t.vertex]));
-  for (int v : constraints.plane_vertices)
-    blocks.plane.push_back(problem.AddResidualBlock(
-        detail::PlaneResidual::Create(*constraints.plane, options.plane_weight), nullptr,
-        &x[3 * v]));
+  const MeshEnergy energy = build_energy(lm, models, constraints, options);
+  const unsigned threads = resolve_threads(options.threads);
+  // Owned by `gradient_problem` below on the L-BFGS path, by this pointer otherwise.
+  auto* function = new MeshEnergyFunction(energy, n, threads);
+  std::unique_ptr<ceres::FirstOrderFunction> owned_function(function);
 
   OptimizeSummary summary;
-  summary.initial = energies(problem, blocks);
-  ceres::Solver::Options solver;
-  configure(options, solver);
+  summary.initial = function->terms(x.data());
   CeresProgress callback(progress, options.max_iterations);
-  solver.callbacks.push_back(&callback);
-  solver.update_state_every_iteration = false;
-  ceres::Solver::Summary ceres_summary;
   const auto start = std::chrono::steady_clock::now();
-  ceres::Solve(solver, &problem, &ceres_summary);
+  if (options.solver == MeshSolver::Lbfgs) {
+    ceres::GradientProblem gradient_problem(owned_function.release());
+    ceres::GradientProblemSolver::Options solver;
+    solver.line_search_direction_type = ceres::LBFGS;
+    solver.max_num_iterations = options.max_iterations;
+    solver.function_tolerance = options.function_tolerance;
+    solver.gradient_tolerance = 1e-14;
+    solver.parameter_tolerance = 1e-12;
+    solver.logging_type = ceres::SILENT;
+    solver.callbacks.push_back(&callback);
+    ceres::GradientProblemSolver::Summary s;
+    ceres::Solve(solver, gradient_problem, x.data(), &s);
+    callback.rethrow();
+    summary.final = function->terms(x.data());
+    summary.iterations = static_cast<int>(s.iterations.size()) - 1;
+    summary.termination = std::string(ceres::TerminationTypeToString(s.termination_type)) + ": " + s.message;
+    summary.solver = "LINE_SEARCH, LBFGS";
+    summary.usable = s.IsSolutionUsable();
+  } else {
+    ceres::Problem problem;
+    add_residual_blocks(energy, x, problem);
+    ceres::Solver::Options solver;
+    solver.max_num_iterations = options.max_iterations;
+    solver.function_tolerance = options.function_tolerance;
+    solver.gradient_tolerance = 1e-14;
+    solver.parameter_tolerance = 1e-12;
+    solver.num_threads = static_cast<int>(threads);
+    solver.logging_type = ceres::SILENT;
+    solver.minimizer_type = ceres::TRUST_REGION;
+    if (options.solver == MeshSolver::SparseCholesky) {
+      solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+      solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+    } else {
+      solver.linear_solver_type = ceres::CGNR;
+      solver.preconditioner_type = ceres::JACOBI;
+    }
+    solver.callbacks.push_back(&callback);
+    ceres::Solver::Summary s;
+    ceres::Solve(solver, &problem, &s);
+    callback.rethrow();
+    summary.final = function->terms(x.data());
+    summary.iterations = static_cast<int>(s.iterations.size()) - 1;
+    summary.termination = std::string(ceres::TerminationTypeToString(s.termination_type)) + ": " + s.message;
+    summary.solver = std::string("TRUST_REGION, ") + ceres::LinearSolverTypeToString(s.linear_solver_type_used);
+    summary.usable = s.IsSolutionUsable();
+  }
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  callback.rethrow();
-  summary.final = energies(problem, blocks);
-  summary.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
-  summary.termination = std::string(ceres::TerminationTypeToString(ceres_summary.termination_type)) +
-                        ": " + ceres_summary.message;
-  summary.solver = std::string(ceres::MinimizerTypeToString(ceres_summary.minimizer_type)) + ", " +
-                   (ceres_summary.minimizer_type == ceres::TRUST_REGION
-                        ? ceres::LinearSolverTypeToString(ceres_summary.linear_solver_type_used)
-                        : ceres::LineSearchDirectionTypeToString(
-                              ceres_summary.line_search_direction_type));
-  summary.usable = ceres_summary.IsSolutionUsable();
 
   for (double value : x)
     if (!std::isfinite(value))
       throw Error::processing("the final mesh optimisation diverged (non-finite positions); "
                               "check that the proxy lies close to the strokes");
+  std::vector<bool> on_plane(n, false);
+  for (int v : constraints.plane_vertices) on_plane[v] = true;
   for (auto v : mesh.vertices()) {
     Eigen::Vector3d p(x[3 * v.idx()], x[3 * v.idx() + 1], x[3 * v.idx() + 2]);
     if (on_plane[v.idx()]) p -= constraints.plane->signed_distance(p) * constraints.plane->normal;
