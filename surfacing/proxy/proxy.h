@@ -24,7 +24,8 @@ struct ProxyOptions {
                                ///< diagonal
   double sample_spacing = 0.002;  ///< stroke resampling before farthest-point sampling, fraction
   int remesh_iterations = 5;   ///< isotropic remeshing rounds (Botsch & Kobbelt 2004)
-  int projection_steps = 3;    ///< Newton steps per projection onto the VIPSS surface
+  int projection_steps = 1;    ///< Newton steps per projection onto the VIPSS surface (each
+                               ///< remeshing round projects again)
   double attract_weight = 2.0; ///< Least-Squares Mesh positional weight (Sorkine & Cohen-Or 2004)
   int attract_rounds = 3;      ///< Least-Squares Mesh rounds (re-assign nearest vertices, re-solve)
   double max_proxy_distance = 0.25;  ///< user proxy: largest accepted median distance from the

@@ -1,0 +1,75 @@
+// Every real sketch gets a proxy, or a clear error when its strokes cannot enclose a surface.
+// Built twice: label 'data' runs a quick subset; label 'slow' (PROXY_DATA_ALL) every CASSIE and
+// VNS sketch with the default options.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "surfacing/error.h"
+#include "surfacing/proxy/attract.h"
+#include "surfacing/proxy/proxy.h"
+#include "surfacing/sketch/io/sketch_io.h"
+
+namespace sketchsurf {
+namespace {
+
+std::vector<std::string> sketches() {
+#ifdef PROXY_DATA_ALL
+  std::vector<std::string> out;
+  for (const char* folder : {"cassie", "vns"})
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(SKETCHSURF_DATA_DIR) / folder)) {
+      const std::string ext = e.path().extension().string();
+      if (ext == ".curves" || ext == ".obj") out.push_back(std::string(folder) + "/" + e.path().filename().string());
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+#else
+  return {"cassie/11-2-2.curves", "cassie/computer-mouse.curves", "vns/torus.obj"};
+#endif
+}
+
+class ProxyData : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ProxyData, ClosedProxyNearTheStrokesOrAClearError) {
+  const std::filesystem::path file = std::filesystem::path(SKETCHSURF_DATA_DIR) / GetParam();
+  Sketch sketch = read_sketch(file);
+  clean(sketch);
+  const double diagonal = sketch.bounding_box().diagonal();
+  ProxyReport report;
+  TriMesh proxy;
+  try {
+    proxy = make_proxy(sketch, {}, {}, &report);
+  } catch (const Error& e) {
+    // Only a processing error that says why is acceptable.
+    EXPECT_EQ(e.kind(), ErrorKind::Processing) << e.what();
+    EXPECT_GT(std::string(e.what()).size(), 20u);
+    return;
+  }
+  const MeshTopology t = mesh_topology(proxy);
+  EXPECT_TRUE(t.closed());
+  EXPECT_GE(t.components, 1u);
+  EXPECT_GT(proxy.n_vertices(), 100u);
+  // VIPSS interpolates the samples: the strokes lie on or near the proxy.
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& s : sketch.strokes)
+    if (!s.ignored) points.insert(points.end(), s.points.begin(), s.points.end());
+  Eigen::MatrixX3d targets(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) targets.row(static_cast<Eigen::Index>(i)) = points[i];
+  EXPECT_LT(median_nearest_vertex_distance(proxy, targets), 0.02 * diagonal);
+  std::cout << GetParam() << ": " << proxy.n_vertices() << " vertices, " << t.components
+            << " component(s), genus " << t.genus << ", " << report.total_seconds << " s\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(RealSketches, ProxyData, ::testing::ValuesIn(sketches()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace sketchsurf
