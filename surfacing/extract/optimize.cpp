@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 
 #include <Eigen/Sparse>
@@ -28,6 +29,7 @@ bool MeshEnergyOptions::valid(std::string* why) const {
   if (!(plane_weight >= 0.0)) return fail("extract.plane_weight must be >= 0");
   if (max_iterations < 1) return fail("extract.max_iterations must be at least 1");
   if (!(function_tolerance > 0.0)) return fail("extract.function_tolerance must be > 0");
+  if (!(gradient_tolerance > 0.0)) return fail("extract.gradient_tolerance must be > 0");
   return true;
 }
 
@@ -393,6 +395,13 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     for (int c = 0; c < 3; ++c) x[3 * v.idx() + c] = p[c];
   }
   const MeshEnergy energy = build_energy(lm, models, constraints, options);
+  // Length scale of the stopping test on the gradient: the mesh's bounding-box diagonal.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (auto v : mesh.vertices()) {
+    lo = lo.cwiseMin(to_eigen(mesh.point(v)));
+    hi = hi.cwiseMax(to_eigen(mesh.point(v)));
+  }
+  const double size = n > 0 ? (hi - lo).norm() : 1.0;
   const unsigned threads = resolve_threads(options.threads);
   // Owned by `gradient_problem` below on the L-BFGS path, by this pointer otherwise.
   auto* function = new MeshEnergyFunction(energy, n, threads);
@@ -408,7 +417,7 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     solver.line_search_direction_type = ceres::LBFGS;
     solver.max_num_iterations = options.max_iterations;
     solver.function_tolerance = options.function_tolerance;
-    solver.gradient_tolerance = 1e-14;
+    solver.gradient_tolerance = options.gradient_tolerance * size;
     solver.parameter_tolerance = 1e-12;
     solver.logging_type = ceres::SILENT;
     solver.callbacks.push_back(&callback);
@@ -426,7 +435,7 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     ceres::Solver::Options solver;
     solver.max_num_iterations = options.max_iterations;
     solver.function_tolerance = options.function_tolerance;
-    solver.gradient_tolerance = 1e-14;
+    solver.gradient_tolerance = options.gradient_tolerance * size;
     solver.parameter_tolerance = 1e-12;
     solver.num_threads = static_cast<int>(threads);
     solver.logging_type = ceres::SILENT;

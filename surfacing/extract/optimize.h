@@ -37,6 +37,10 @@ struct MeshEnergyOptions {
   MeshSolver solver = MeshSolver::Lbfgs;  ///< see MeshSolver
   int max_iterations = 2000;         ///< solver iterations (Ceres max_num_iterations)
   double function_tolerance = 1e-8;  ///< relative cost change that stops the solver (Ceres)
+  double gradient_tolerance = 1e-6;  ///< largest gradient entry that stops the solver, fraction of
+                                     ///< the mesh's diagonal (the energy is in length^2, its gradient
+                                     ///< in length: about how far a vertex still is from its optimum
+                                     ///< along well-conditioned directions)
   unsigned threads = 0;              ///< Ceres threads (0 = all); the result does not depend on it
   bool valid(std::string* why) const;
 };
