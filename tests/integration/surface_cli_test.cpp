@@ -1,0 +1,122 @@
+// `sketchsurf surface` end to end: outputs, report.json, and what bad inputs give (exit code 3 or
+// 4 with a message saying what to do).
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "surfacing/sketch/io/mesh_io.h"
+#include "surfacing/sketch/io/sketch_io.h"
+#include "tests/support/shapes.h"
+
+namespace sketchsurf {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string err;
+};
+
+CliRun run_cli(const std::string& args, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  const int status =
+      std::system((std::string(SKETCHSURF_CLI) + " -q " + args + " 2>" + err.string()).c_str());
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("sketchsurf_surface_cli_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(SurfaceCli, WritesTheMeshTheRegionsAndTheReport) {
+  const fs::path dir = temp_dir("ok");
+  // Parameters stored with the sketch: a coarse proxy resolution and two restarts keep it short.
+  Sketch cube = testing::cube_sketch();
+  cube.params = {{"proxy.edge", 0.03}, {"segment.restarts", 2}};
+  write_sketch(cube, dir / "cube.json");
+  write_mesh(testing::rounded_box_mesh(3, {0.5, 0.5, 0.5}, 0.1), dir / "proxy.ply");
+  const CliRun r = run_cli("surface " + (dir / "cube.json").string() + " --proxy " +
+                            (dir / "proxy.ply").string() + " -o " + (dir / "out.ply").string() +
+                            " --regions " + (dir / "regions.ply").string() + " --report " +
+                            (dir / "report.json").string() + " --seed 7",
+                        dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  MeshAttributes attributes;
+  const TriMesh mesh = read_mesh(dir / "out.ply", &attributes);
+  EXPECT_GT(mesh.n_faces(), 1000u);
+  EXPECT_EQ(attributes.labels.size(), mesh.n_vertices());
+  std::ifstream in(dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["regions"], 6);
+  EXPECT_LT(report["stroke_distance"]["median"].get<double>(), 0.01);
+  EXPECT_GE(report["stroke_distance"]["max"].get<double>(), report["stroke_distance"]["p95"].get<double>());
+  EXPECT_GT(report["timings"]["extraction_s"].get<double>(), 0.0);
+  EXPECT_GE(report["timings"]["total_s"].get<double>(), report["timings"]["extraction_s"].get<double>());
+  EXPECT_TRUE(fs::exists(dir / "regions.ply"));
+
+  // An unknown parameter in the file is an input error naming it.
+  cube.params = {{"segment.epsilonn", 0.1}};
+  write_sketch(cube, dir / "typo.json");
+  const CliRun typo = run_cli("surface " + (dir / "typo.json").string() + " -o " + (dir / "t.ply").string(), dir);
+  EXPECT_EQ(typo.code, 3);
+  EXPECT_NE(typo.err.find("segment.epsilonn"), std::string::npos) << typo.err;
+}
+
+TEST(SurfaceCli, BadInputsGiveExitCode3Or4AndSayWhatToDo) {
+  const fs::path dir = temp_dir("bad");
+  const std::string out = " -o " + (dir / "out.ply").string();
+  write_sketch(testing::cube_sketch(), dir / "cube.json");
+  const std::string cube = (dir / "cube.json").string();
+
+  // Every stroke ignored.
+  Sketch ignored = testing::cube_sketch();
+  for (Stroke& s : ignored.strokes) s.ignored = true;
+  write_sketch(ignored, dir / "ignored.json");
+  CliRun r = run_cli("surface " + (dir / "ignored.json").string() + out, dir);
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("ignored"), std::string::npos) << r.err;
+
+  // Empty sketch.
+  write_sketch(Sketch{}, dir / "empty.json");
+  r = run_cli("surface " + (dir / "empty.json").string() + out, dir);
+  EXPECT_TRUE(r.code == 3 || r.code == 4) << r.err;
+  EXPECT_NE(r.err.find("stroke"), std::string::npos) << r.err;
+
+  // A proxy that is not a triangle mesh (points and a line).
+  { std::ofstream f(dir / "lines.obj"); f << "v 0 0 0\nv 1 0 0\nl 1 2\n"; }
+  r = run_cli("surface " + cube + " --proxy " + (dir / "lines.obj").string() + out, dir);
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("lines.obj"), std::string::npos) << r.err;
+
+  // A non-manifold proxy: three triangles on one edge.
+  { std::ofstream f(dir / "fin.obj"); f << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n"; }
+  r = run_cli("surface " + cube + " --proxy " + (dir / "fin.obj").string() + out, dir);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("fin.obj"), std::string::npos) << r.err;
+
+  // A proxy far from the strokes.
+  write_mesh(testing::icosphere(2, 0.5, {100, 0, 0}), dir / "far.ply");
+  r = run_cli("surface " + cube + " --proxy " + (dir / "far.ply").string() + out, dir);
+  EXPECT_TRUE(r.code == 3 || r.code == 4) << r.err;
+  EXPECT_NE(r.err.find("far"), std::string::npos) << r.err;
+
+  // Usage errors: a bad mirror plane, an unknown boundary stroke.
+  EXPECT_EQ(run_cli("surface " + cube + " --mirror 1,2" + out, dir).code, 2);
+  EXPECT_EQ(run_cli("surface " + cube + " --boundary-strokes 999" + out, dir).code, 2);
+  EXPECT_FALSE(fs::exists(dir / "out.ply"));
+}
+
+}  // namespace
+}  // namespace sketchsurf
