@@ -30,6 +30,8 @@ bool MeshEnergyOptions::valid(std::string* why) const {
   if (max_iterations < 1) return fail("extract.max_iterations must be at least 1");
   if (!(function_tolerance > 0.0)) return fail("extract.function_tolerance must be > 0");
   if (!(gradient_tolerance > 0.0)) return fail("extract.gradient_tolerance must be > 0");
+  if (projection_steps < 0) return fail("extract.projection_steps must be >= 0");
+  if (!(max_projection_step > 0.0)) return fail("extract.max_projection_step must be > 0");
   return true;
 }
 
@@ -294,6 +296,36 @@ class CeresProgress final : public ceres::IterationCallback {
   std::exception_ptr error_;
 };
 
+/// Moves each vertex onto the intersection of its labels' surfaces by damped Gauss-Newton steps
+/// (least-norm dx with f_i + grad f_i . dx = 0), each step at most `max_step` long: a cheap start
+/// that leaves L-BFGS mostly the regularisation to do.
+void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models, int steps,
+                      double max_step, unsigned threads) {
+  TriMesh& mesh = lm.mesh;
+  parallel_for(0, mesh.n_vertices(), threads, [&](std::size_t i) {
+    const TriMesh::VertexHandle v(static_cast<int>(i));
+    Eigen::Vector3d x = to_eigen(mesh.point(v));
+    const auto& labels = lm.labels[i];
+    const int k = static_cast<int>(labels.size());
+    for (int step = 0; step < steps; ++step) {
+      Eigen::MatrixXd J(k, 3);
+      Eigen::VectorXd f(k);
+      for (int a = 0; a < k; ++a) {
+        f[a] = models[labels[a]].value(x);
+        J.row(a) = models[labels[a]].gradient(x).transpose();
+      }
+      Eigen::MatrixXd JJt = J * J.transpose();
+      const double damping = 1e-6 * JJt.trace() + std::numeric_limits<double>::min();
+      JJt.diagonal().array() += damping;
+      Eigen::Vector3d dx = -J.transpose() * JJt.ldlt().solve(f);
+      if (!dx.allFinite()) break;
+      if (dx.norm() > max_step) dx *= max_step / dx.norm();
+      x += dx;
+    }
+    mesh.set_point(v, to_openmesh(x));
+  });
+}
+
 /// Builds the terms of E_mesh for the mesh at its current positions.
 MeshEnergy build_energy(const LabeledMesh& lm, const std::vector<ImplicitModel>& models,
                         const MeshConstraints& constraints, const MeshEnergyOptions& options) {
@@ -389,13 +421,7 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
   if (!constraints.plane_vertices.empty() && !constraints.plane)
     throw Error::usage("optimize_mesh: plane vertices without a plane");
 
-  std::vector<double> x(3 * static_cast<std::size_t>(n));
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    for (int c = 0; c < 3; ++c) x[3 * v.idx() + c] = p[c];
-  }
-  const MeshEnergy energy = build_energy(lm, models, constraints, options);
-  // Length scale of the stopping test on the gradient: the mesh's bounding-box diagonal.
+  // Length scale of the stopping test and of the start: the mesh's bounding-box diagonal.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (auto v : mesh.vertices()) {
     lo = lo.cwiseMin(to_eigen(mesh.point(v)));
@@ -403,12 +429,26 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
   }
   const double size = n > 0 ? (hi - lo).norm() : 1.0;
   const unsigned threads = resolve_threads(options.threads);
+  const MeshEnergy initial_energy = build_energy(lm, models, constraints, options);
+  std::vector<double> x(3 * static_cast<std::size_t>(n));
+  auto load = [&] {
+    for (auto v : mesh.vertices()) {
+      const auto& p = mesh.point(v);
+      for (int c = 0; c < 3; ++c) x[3 * v.idx() + c] = p[c];
+    }
+  };
+  load();
+  OptimizeSummary summary;
+  summary.initial = MeshEnergyFunction(initial_energy, n, threads).terms(x.data());
+  if (options.projection_steps > 0) {
+    project_vertices(lm, models, options.projection_steps, options.max_projection_step * size, threads);
+    load();
+  }
+  const MeshEnergy energy = build_energy(lm, models, constraints, options);
   // Owned by `gradient_problem` below on the L-BFGS path, by this pointer otherwise.
   auto* function = new MeshEnergyFunction(energy, n, threads);
   std::unique_ptr<ceres::FirstOrderFunction> owned_function(function);
 
-  OptimizeSummary summary;
-  summary.initial = function->terms(x.data());
   CeresProgress callback(progress, options.max_iterations);
   const auto start = std::chrono::steady_clock::now();
   if (options.solver == MeshSolver::Lbfgs) {

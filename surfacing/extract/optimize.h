@@ -34,8 +34,11 @@ struct MeshEnergyOptions {
   double attract_weight = 100.0;     ///< multiplies E_attract (Eq. 13: 1)
   double plane_weight = 1.0e4;       ///< keeps mirror-plane vertices on the plane (ours; they are
                                      ///< snapped exactly onto it afterwards)
+  int projection_steps = 5;          ///< Gauss-Newton steps moving each vertex onto its surfaces
+                                     ///< before the solve (ours: a cheap start for L-BFGS)
+  double max_projection_step = 0.02; ///< longest such step, fraction of the mesh's diagonal (ours)
   MeshSolver solver = MeshSolver::Lbfgs;  ///< see MeshSolver
-  int max_iterations = 2000;         ///< solver iterations (Ceres max_num_iterations)
+  int max_iterations = 500;          ///< solver iterations (Ceres max_num_iterations)
   double function_tolerance = 1e-8;  ///< relative cost change that stops the solver (Ceres)
   double gradient_tolerance = 1e-6;  ///< largest gradient entry that stops the solver, fraction of
                                      ///< the mesh's diagonal (the energy is in length^2, its gradient
@@ -88,7 +91,8 @@ std::vector<double> regularization_weights(const LabeledMesh& mesh,
                                            const std::vector<ImplicitModel>& models,
                                            const MeshEnergyOptions& options);
 
-/// Minimises E_mesh over the vertex positions of `mesh`, in place (Eq. 7-9, 13):
+/// Minimises E_mesh over the vertex positions of `mesh`, in place (Eq. 7-9, 13), starting from
+/// each vertex moved onto its surfaces by projection_steps Gauss-Newton steps:
 /// - E_project: each vertex, for each of its labels a, (1 / |labels|) dist_a(v)^2 with the Taubin
 ///   distance f_a / |grad f_a| (Eq. 5, 8);
 /// - E_regularize: gamma_2D w_v |v - mean(1-ring)|^2 (graph Laplacian, Nealen et al. 2006) on
