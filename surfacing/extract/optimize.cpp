@@ -30,6 +30,7 @@ bool MeshEnergyOptions::valid(std::string* why) const {
   if (max_iterations < 1) return fail("extract.max_iterations must be at least 1");
   if (!(function_tolerance > 0.0)) return fail("extract.function_tolerance must be > 0");
   if (!(gradient_tolerance > 0.0)) return fail("extract.gradient_tolerance must be > 0");
+  if (lbfgs_rank < 1) return fail("extract.lbfgs_rank must be at least 1");
   if (projection_steps < 0) return fail("extract.projection_steps must be >= 0");
   if (!(max_projection_step > 0.0)) return fail("extract.max_projection_step must be > 0");
   return true;
@@ -455,6 +456,7 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     ceres::GradientProblem gradient_problem(owned_function.release());
     ceres::GradientProblemSolver::Options solver;
     solver.line_search_direction_type = ceres::LBFGS;
+    solver.max_lbfgs_rank = options.lbfgs_rank;
     solver.max_num_iterations = options.max_iterations;
     solver.function_tolerance = options.function_tolerance;
     solver.gradient_tolerance = options.gradient_tolerance * size;

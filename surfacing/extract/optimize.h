@@ -38,6 +38,8 @@ struct MeshEnergyOptions {
                                      ///< before the solve (ours: a cheap start for L-BFGS)
   double max_projection_step = 0.02; ///< longest such step, fraction of the mesh's diagonal (ours)
   MeshSolver solver = MeshSolver::Lbfgs;  ///< see MeshSolver
+  int lbfgs_rank = 8;                ///< L-BFGS memory (Ceres max_lbfgs_rank; its default 20 spends
+                                     ///< 40% of the time in the two-loop recursion, measured)
   int max_iterations = 500;          ///< solver iterations (Ceres max_num_iterations)
   double function_tolerance = 1e-8;  ///< relative cost change that stops the solver (Ceres)
   double gradient_tolerance = 1e-6;  ///< largest gradient entry that stops the solver, fraction of
