@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "surfacing/error.h"
+#include "surfacing/extract/seams.h"
 #include "tests/support/shapes.h"
 #include "tests/unit/extract/fixtures.h"
 
@@ -150,6 +151,42 @@ TEST(OptimizeMesh, KeepsPlaneVerticesOnThePlaneAndAttractsTargets) {
   EXPECT_NEAR((to_eigen(m.mesh.point(TriMesh::VertexHandle(2))) - Eigen::Vector3d(0.5, 1.2, 0)).norm(), 0.0, 1e-6);
   EXPECT_GT(s.initial.attract, 0.0);
   EXPECT_LT(s.final.total(), 1e-10);
+}
+
+TEST(OptimizeMesh, SameResultWhateverTheThreadCount) {
+  const Eigen::Vector3d half(0.5, 0.5, 0.5);
+  const TriMesh proxy = testing::rounded_box_mesh(3, half, 0.1);
+  const auto models = testing::box_models(half);
+  const LabeledMesh seamed = insert_seams(proxy, testing::box_labels(proxy, half), models);
+  std::vector<TriMesh> results;
+  for (unsigned threads : {1u, 2u, 3u}) {
+    LabeledMesh m = seamed;
+    MeshEnergyOptions o;
+    o.threads = threads;
+    optimize_mesh(m, models, {}, o);
+    results.push_back(m.mesh);
+  }
+  for (std::size_t r = 1; r < results.size(); ++r)
+    for (auto v : results[0].vertices())
+      ASSERT_EQ(results[0].point(v), results[r].point(v)) << "threads differ at vertex " << v.idx();
+}
+
+TEST(OptimizeMesh, LbfgsAndSparseCholeskyReachTheSameSurface) {
+  const Eigen::Vector3d half(0.5, 0.5, 0.5);
+  const TriMesh proxy = testing::rounded_box_mesh(3, half, 0.1);
+  const auto models = testing::box_models(half);
+  const LabeledMesh seamed = insert_seams(proxy, testing::box_labels(proxy, half), models);
+  double worst = 0.0;
+  for (MeshSolver solver : {MeshSolver::Lbfgs, MeshSolver::SparseCholesky}) {
+    LabeledMesh m = seamed;
+    MeshEnergyOptions o;
+    o.solver = solver;
+    const OptimizeSummary s = optimize_mesh(m, models, {}, o);
+    EXPECT_TRUE(s.usable) << s.solver << ": " << s.termination;
+    EXPECT_LT(s.final.total(), 1e-3 * s.initial.total()) << s.solver;
+    for (auto v : m.mesh.vertices()) worst = std::max(worst, testing::box_distance(to_eigen(m.mesh.point(v)), half));
+  }
+  EXPECT_LT(worst, 0.003 * 2 * half.norm());
 }
 
 TEST(OptimizeMesh, RejectsBadInput) {
