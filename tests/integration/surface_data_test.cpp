@@ -1,0 +1,53 @@
+// Stroke fit of the final surface on the real sketches (label `data`): every CASSIE (.curves) and
+// VNS (.obj) sketch in ../shared/data, through the whole pipeline with an automatic proxy built by
+// the test at a coarser resolution than the paper's (to keep the test short): the median distance
+// from the stroke points to the surface must stay under 1% of the bounding-box diagonal.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "surfacing/pipeline.h"
+#include "surfacing/sketch/io/sketch_io.h"
+
+namespace sketchsurf {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> real_sketches() {
+  std::vector<std::string> files;
+  for (const char* dir : {"cassie", "vns"})
+    for (const auto& entry : fs::directory_iterator(fs::path(SKETCHSURF_DATA_DIR) / dir))
+      if (entry.path().extension() == ".curves" || entry.path().extension() == ".obj")
+        files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+class SurfaceData : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SurfaceData, MedianStrokeDistanceUnderOnePercent) {
+  const Sketch sketch = read_sketch(GetParam());
+  Params params;
+  params.proxy.edge = 0.02;
+  params.segment.restarts = 2;
+  const SurfaceResult r = Surfacer(params).run(sketch);
+  EXPECT_LT(r.report.stroke_distance.median, 0.01) << GetParam();
+  EXPECT_GT(r.mesh.n_faces(), 0u);
+  std::cerr << fs::path(GetParam()).filename().string() << ": median "
+            << 100 * r.report.stroke_distance.median << "%, p95 " << 100 * r.report.stroke_distance.p95
+            << "%, " << r.segmentation.models.size() << " regions, " << r.mesh.n_vertices()
+            << " vertices, " << r.report.total_s << " s (extraction " << r.report.extraction_s << " s)\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(RealSketches, SurfaceData, ::testing::ValuesIn(real_sketches()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = fs::path(info.param).stem().string();
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return fs::path(info.param).parent_path().filename().string() + "_" + name;
+                         });
+
+}  // namespace
+}  // namespace sketchsurf
