@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <numeric>
 #include <vector>
 
@@ -253,6 +254,24 @@ TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const Prox
 
   TriMesh mesh = user_mesh;
   transform_mesh(mesh, frame.centre, frame.scale);
+  auto refuse_far = [&](double median_distance) {
+    if (median_distance > options.max_proxy_distance)
+      throw Error::processing("the proxy mesh is far from the strokes: median distance " +
+                              std::to_string(median_distance) + " of the sketch diagonal (at most " +
+                              std::to_string(options.max_proxy_distance) +
+                              "); is it in the sketch's units and position?");
+  };
+  {
+    // Cheap early refusal before remeshing: distances to the mesh's bounding box are lower
+    // bounds of the distances to the mesh.
+    BoundingBox mesh_box;
+    for (const auto v : mesh.vertices()) mesh_box.extend(to_eigen(mesh.point(v)));
+    std::vector<double> d(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      d[i] = (points[i] - points[i].cwiseMax(mesh_box.min).cwiseMin(mesh_box.max)).norm();
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+    refuse_far(d[d.size() / 2]);
+  }
   auto t0 = Clock::now();
   RemeshOptions remesh_options;
   remesh_options.target_edge = options.edge;
@@ -261,12 +280,7 @@ TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const Prox
   r.remesh_seconds = seconds_since(t0);
 
   t0 = Clock::now();
-  const double before = median_nearest_vertex_distance(mesh, targets, options.threads);
-  if (before > options.max_proxy_distance)
-    throw Error::processing("the proxy mesh is far from the strokes: median distance " +
-                            std::to_string(before) + " of the sketch diagonal (at most " +
-                            std::to_string(options.max_proxy_distance) +
-                            "); is it in the sketch's units and position?");
+  refuse_far(median_nearest_vertex_distance(mesh, targets, options.threads));
   AttractOptions attract;
   attract.weight = options.attract_weight;
   attract.rounds = options.attract_rounds;
