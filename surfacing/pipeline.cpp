@@ -79,6 +79,8 @@ const std::map<std::string, Setter>& parameter_table() {
       {"extract.sharp_angle", setter([](Params& p) -> auto& { return p.extract.energy.sharp_angle; })},
       {"extract.attract_weight", setter([](Params& p) -> auto& { return p.extract.energy.attract_weight; })},
       {"extract.max_iterations", setter([](Params& p) -> auto& { return p.extract.energy.max_iterations; })},
+      {"extract.lbfgs_rank", setter([](Params& p) -> auto& { return p.extract.energy.lbfgs_rank; })},
+      {"extract.projection_steps", setter([](Params& p) -> auto& { return p.extract.energy.projection_steps; })},
       {"extract.function_tolerance", setter([](Params& p) -> auto& { return p.extract.energy.function_tolerance; })},
       {"extract.threads", setter([](Params& p) -> auto& { return p.extract.energy.threads; })},
       {"extract.edge_margin", setter([](Params& p) -> auto& { return p.extract.seams.edge_margin; })},
