@@ -22,4 +22,10 @@ inline std::vector<std::pair<std::string, Sketch>> bundled_examples() {
           {"cube_mirrored", mirrored}};
 }
 
+/// (name, mesh) for every bundled example proxy: a coarse rounded box around the cube sketch, the
+/// kind of rough proxy a user makes (`sketchsurf surface cube.json --proxy cube_proxy.obj`).
+inline std::vector<std::pair<std::string, TriMesh>> bundled_example_proxies() {
+  return {{"cube_proxy", rounded_box_mesh(2, Eigen::Vector3d::Constant(0.56), 0.12)}};
+}
+
 }  // namespace sketchsurf::testing

@@ -6,6 +6,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/json.h"
+#include "surfacing/sketch/io/mesh_io.h"
 #include "tests/support/examples.h"
 
 int main(int argc, char** argv) {
@@ -17,6 +18,11 @@ int main(int argc, char** argv) {
     for (const auto& [name, sketch] : sketchsurf::testing::bundled_examples()) {
       const auto file = std::filesystem::path(argv[1]) / (name + ".json");
       sketchsurf::write_json(sketch, file);
+      std::cout << "wrote " << file.string() << "\n";
+    }
+    for (const auto& [name, mesh] : sketchsurf::testing::bundled_example_proxies()) {
+      const auto file = std::filesystem::path(argv[1]) / (name + ".obj");
+      sketchsurf::write_mesh(mesh, file);
       std::cout << "wrote " << file.string() << "\n";
     }
   } catch (const sketchsurf::Error& e) {

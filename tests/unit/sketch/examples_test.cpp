@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "surfacing/sketch/io/json.h"
+#include "surfacing/sketch/io/mesh_io.h"
 #include "tests/support/examples.h"
 
 namespace sketchsurf::testing {
@@ -22,6 +23,17 @@ TEST(BundledExamples, MatchTheirGenerators) {
       EXPECT_EQ(a.ignored, b.ignored);
     }
     EXPECT_EQ(actual.mirror.has_value(), expected.mirror.has_value());
+  }
+}
+
+TEST(BundledExamples, ProxiesMatchTheirGenerators) {
+  for (const auto& [name, expected] : bundled_example_proxies()) {
+    SCOPED_TRACE(name);
+    const TriMesh actual = read_mesh(std::filesystem::path(SKETCHSURF_TESTS_DIR) / "data" / (name + ".obj"));
+    ASSERT_EQ(actual.n_vertices(), expected.n_vertices());
+    ASSERT_EQ(actual.n_faces(), expected.n_faces());
+    for (auto v : expected.vertices())
+      EXPECT_LT((actual.point(actual.vertex_handle(v.idx())) - expected.point(v)).norm(), 1e-12);
   }
 }
 
