@@ -2,7 +2,6 @@
 // [--report report.json]: the proxy surface (paper §5 "Proxy creation"), automatic (VIPSS) or a
 // user mesh attracted to the strokes.
 
-#include <sys/resource.h>
 
 #include <iostream>
 #include <memory>
@@ -12,6 +11,7 @@
 #include "surfacing/sketch/io/atomic_file.h"
 #include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
+#include "tools/sketchsurf/reports.h"
 
 namespace sketchsurf::cli {
 
@@ -24,12 +24,6 @@ struct ProxyCommandOptions {
   std::string report;
   ProxyOptions proxy;
 };
-
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
-}
 
 nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt) {
   nlohmann::json j = {

@@ -1,7 +1,6 @@
 // sketchsurf segment SKETCH --proxy MESH -o regions.ply [--report report.json] [--seed N]
 // [--restarts N] [--epsilon F]: the proxy labelled into smooth regions (paper §4.1-4.2).
 
-#include <sys/resource.h>
 
 #include <array>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include "surfacing/sketch/io/atomic_file.h"
 #include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
+#include "tools/sketchsurf/reports.h"
 
 namespace sketchsurf::cli {
 
@@ -37,29 +37,10 @@ std::array<std::uint8_t, 3> region_color(int label) {
           static_cast<std::uint8_t>(std::lround(255 * rgb[i][2]))};
 }
 
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
-}
-
 nlohmann::json report_json(const Segmentation& s, const SegmentOptions& o) {
-  nlohmann::json models = nlohmann::json::array();
-  std::vector<std::size_t> sizes(s.models.size(), 0);
-  for (int l : s.labels) ++sizes[l];
-  for (std::size_t i = 0; i < s.models.size(); ++i) {
-    const ImplicitModel& m = s.models[i];
-    models.push_back({{"label", i},
-                      {"degree", m.degree},
-                      {"vertices", sizes[i]},
-                      {"center", {m.center.x(), m.center.y(), m.center.z()}},
-                      {"scale", m.scale},
-                      {"coefficients", std::vector<double>(m.coefficients.data(),
-                                                           m.coefficients.data() + m.coefficients.size())}});
-  }
   const SegmentationSummary& sum = s.summary;
   return {{"regions", s.models.size()},
-          {"models", models},
+          {"models", models_json(s)},
           {"energy", {{"fidelity", sum.energy.fidelity},
                       {"smoothness", sum.energy.smoothness},
                       {"simplicity", sum.energy.simplicity},

@@ -2,7 +2,6 @@
 // [--regions regions.ply] [--mirror x|y|z|a,b,c,d] [--boundary-strokes IDS] [--seed N]:
 // the piecewise-smooth surface of a sketch (the whole method, paper §4-5).
 
-#include <sys/resource.h>
 
 #include <cmath>
 #include <iostream>
@@ -15,6 +14,7 @@
 #include "surfacing/sketch/io/atomic_file.h"
 #include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
+#include "tools/sketchsurf/reports.h"
 
 namespace sketchsurf::cli {
 
@@ -84,29 +84,10 @@ std::set<std::int64_t> parse_ids(const std::string& text) {
   return ids;
 }
 
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
-}
-
 nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
   const SurfaceReport& rep = r.report;
   const SegmentationSummary& seg = rep.segmentation;
   const ExtractSummary& ex = rep.extraction;
-  nlohmann::json models = nlohmann::json::array();
-  std::vector<std::size_t> sizes(r.segmentation.models.size(), 0);
-  for (int l : r.segmentation.labels) ++sizes[l];
-  for (std::size_t i = 0; i < r.segmentation.models.size(); ++i) {
-    const ImplicitModel& m = r.segmentation.models[i];
-    models.push_back({{"label", i},
-                      {"degree", m.degree},
-                      {"vertices", sizes[i]},
-                      {"center", {m.center.x(), m.center.y(), m.center.z()}},
-                      {"scale", m.scale},
-                      {"coefficients", std::vector<double>(m.coefficients.data(),
-                                                           m.coefficients.data() + m.coefficients.size())}});
-  }
   auto energy_terms = [](const MeshEnergyTerms& e) {
     return nlohmann::json{{"project", e.project},         {"regularize_2d", e.regularize_2d},
                           {"regularize_1d", e.regularize_1d}, {"attract", e.attract},
@@ -115,7 +96,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
   return {
       // The segmentation report (as `sketchsurf segment --report`) ...
       {"regions", r.segmentation.models.size()},
-      {"models", models},
+      {"models", models_json(r.segmentation)},
       {"energy", {{"fidelity", seg.energy.fidelity}, {"smoothness", seg.energy.smoothness},
                   {"simplicity", seg.energy.simplicity}, {"total", seg.energy.total}}},
       {"energy_history", seg.energy_history},

@@ -12,14 +12,9 @@
 
 namespace sketchsurf {
 
-namespace {
+using io_detail::lower_extension;
 
-std::string lower_extension(const std::filesystem::path& file) {
-  auto ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
+namespace {
 
 /// Polygons as read from a file, before they become a TriMesh.
 struct PolygonSoup {

@@ -7,18 +7,14 @@
 #include "surfacing/sketch/io/curves.h"
 #include "surfacing/sketch/io/json.h"
 #include "surfacing/sketch/io/obj_polylines.h"
+#include "surfacing/sketch/io/text_io.h"
 #include "surfacing/sketch/io/tilt.h"
 
 namespace sketchsurf {
 
-namespace {
+using io_detail::lower_extension;
 
-std::string lower_extension(const std::filesystem::path& file) {
-  auto ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
+namespace {
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;

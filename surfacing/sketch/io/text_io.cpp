@@ -1,5 +1,7 @@
 #include "surfacing/sketch/io/text_io.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -94,5 +96,12 @@ std::optional<std::int64_t> parse_int(std::string_view token) {
 
 void append_number(std::string& out, double value) { append_shortest(out, value); }
 void append_number(std::string& out, float value) { append_shortest(out, value); }
+
+std::string lower_extension(const std::filesystem::path& file) {
+  auto ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
 
 }  // namespace sketchsurf::io_detail

@@ -15,6 +15,9 @@ namespace sketchsurf::io_detail {
 /// The bytes of `file`. Throws Error (Input) naming the file when it cannot be opened or read.
 std::string read_file(const std::filesystem::path& file);
 
+/// The file's extension in lower case, with its dot (".ply").
+std::string lower_extension(const std::filesystem::path& file);
+
 /// Iterates over the lines of a text, counting them from 1. A line loses its line ending (LF or
 /// CRLF) and its trailing whitespace, so "v 3 \r\n" gives "v 3".
 class LineReader {

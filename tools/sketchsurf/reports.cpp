@@ -1,0 +1,30 @@
+#include "tools/sketchsurf/reports.h"
+
+#include <sys/resource.h>
+
+namespace sketchsurf::cli {
+
+nlohmann::json models_json(const Segmentation& segmentation) {
+  nlohmann::json models = nlohmann::json::array();
+  std::vector<std::size_t> sizes(segmentation.models.size(), 0);
+  for (int l : segmentation.labels) ++sizes[l];
+  for (std::size_t i = 0; i < segmentation.models.size(); ++i) {
+    const ImplicitModel& m = segmentation.models[i];
+    models.push_back({{"label", i},
+                      {"degree", m.degree},
+                      {"vertices", sizes[i]},
+                      {"center", {m.center.x(), m.center.y(), m.center.z()}},
+                      {"scale", m.scale},
+                      {"coefficients", std::vector<double>(m.coefficients.data(),
+                                                           m.coefficients.data() + m.coefficients.size())}});
+  }
+  return models;
+}
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
+}
+
+}  // namespace sketchsurf::cli
