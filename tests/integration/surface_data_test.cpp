@@ -30,7 +30,9 @@ class SurfaceData : public ::testing::TestWithParam<std::string> {};
 TEST_P(SurfaceData, MedianStrokeDistanceUnderOnePercent) {
   const Sketch sketch = read_sketch(GetParam());
   Params params;
-  params.proxy.edge = 0.02;
+  // 0.014 of the diagonal, twice the paper's edge: at 0.02 thin parts (the guitar's neck) are
+  // under-resolved and its median distance rises to 1.25%; at 0.014 it is 0.56%.
+  params.proxy.edge = 0.014;
   params.segment.restarts = 2;
   const SurfaceResult r = Surfacer(params).run(sketch);
   EXPECT_LT(r.report.stroke_distance.median, 0.01) << GetParam();
