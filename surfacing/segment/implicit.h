@@ -121,18 +121,31 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
 // ------------------------------------------------------------------------------------------------
 // Template definitions.
 
+namespace detail {
+
+// Powers 0..d of each normalised coordinate (x - center) / scale, for d the degree the model's
+// coefficients need (not trusting `degree`); returns how many monomials (at most 35) to sum.
 template <typename T>
-T ImplicitModel::evaluate(const T* x) const {
+Eigen::Index implicit_powers(const ImplicitModel& model, const T* x,
+                             T (&powers)[3][kMaxImplicitDegree + 1]) {
   constexpr MonomialExponents kMonomials = implicit_monomials();
-  // Powers up to the degree the coefficients need (not trusting `degree`), at most 35 terms.
-  const Eigen::Index t = std::min<Eigen::Index>(coefficients.size(), kMonomials.size());
+  const Eigen::Index t = std::min<Eigen::Index>(model.coefficients.size(), kMonomials.size());
   const int needed = t > 0 ? kMonomials[t - 1][0] + kMonomials[t - 1][1] + kMonomials[t - 1][2] : 0;
-  T powers[3][kMaxImplicitDegree + 1];
   for (int i = 0; i < 3; ++i) {
-    const T y = (x[i] - T(center[i])) / T(scale);
+    const T y = (x[i] - T(model.center[i])) / T(model.scale);
     powers[i][0] = T(1.0);
     for (int e = 1; e <= needed; ++e) powers[i][e] = powers[i][e - 1] * y;
   }
+  return t;
+}
+
+}  // namespace detail
+
+template <typename T>
+T ImplicitModel::evaluate(const T* x) const {
+  constexpr MonomialExponents kMonomials = implicit_monomials();
+  T powers[3][kMaxImplicitDegree + 1];
+  const Eigen::Index t = detail::implicit_powers(*this, x, powers);
   T f = T(0.0);
   for (Eigen::Index k = 0; k < t; ++k) {
     const auto& m = kMonomials[k];
@@ -144,15 +157,8 @@ T ImplicitModel::evaluate(const T* x) const {
 template <typename T>
 void ImplicitModel::evaluate_gradient(const T* x, T* g) const {
   constexpr MonomialExponents kMonomials = implicit_monomials();
-  // Powers up to the degree the coefficients need (not trusting `degree`), at most 35 terms.
-  const Eigen::Index t = std::min<Eigen::Index>(coefficients.size(), kMonomials.size());
-  const int needed = t > 0 ? kMonomials[t - 1][0] + kMonomials[t - 1][1] + kMonomials[t - 1][2] : 0;
   T powers[3][kMaxImplicitDegree + 1];
-  for (int i = 0; i < 3; ++i) {
-    const T y = (x[i] - T(center[i])) / T(scale);
-    powers[i][0] = T(1.0);
-    for (int e = 1; e <= needed; ++e) powers[i][e] = powers[i][e - 1] * y;
-  }
+  const Eigen::Index t = detail::implicit_powers(*this, x, powers);
   for (int i = 0; i < 3; ++i) g[i] = T(0.0);
   for (Eigen::Index k = 1; k < t; ++k) {
     const auto& m = kMonomials[k];

@@ -61,12 +61,7 @@ void run_proxy(const ProxyCommandOptions& opt, const GlobalOptions& global) {
   const std::string ext = std::filesystem::path(opt.output).extension().string();
   if (ext != ".obj" && ext != ".ply")
     throw Error::usage("proxy output must be .obj or .ply, got '" + opt.output + "'");
-  Warnings warnings;
-  Sketch sketch = read_sketch(opt.sketch, &warnings);
-  print_warnings(global, opt.sketch, warnings);
-  const CleanReport cleaning = clean(sketch);
-  if (!global.quiet)
-    for (const auto& m : cleaning.messages) std::cerr << opt.sketch << ": cleaned: " << m << "\n";
+  Sketch sketch = read_clean_sketch(opt.sketch, global);
   if (global.verbose)
     std::cerr << "proxy: points " << opt.proxy.points << ", lambda " << opt.proxy.lambda
               << ", edge " << opt.proxy.edge << ", cell " << opt.proxy.cell << ", threads "

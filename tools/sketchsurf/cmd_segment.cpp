@@ -67,12 +67,7 @@ nlohmann::json report_json(const Segmentation& s, const SegmentOptions& o) {
 void run_segment(const SegmentCommandOptions& opt, const GlobalOptions& global) {
   std::string why;
   if (!opt.segment.valid(&why)) throw Error::usage(why);
-  Warnings warnings;
-  Sketch sketch = read_sketch(opt.sketch, &warnings);
-  print_warnings(global, opt.sketch, warnings);
-  const CleanReport cleaning = clean(sketch);
-  if (!global.quiet)
-    for (const auto& m : cleaning.messages) std::cerr << opt.sketch << ": cleaned: " << m << "\n";
+  Sketch sketch = read_clean_sketch(opt.sketch, global);
   if (sketch.strokes.empty()) throw Error::input(opt.sketch, "no stroke left to segment");
   const TriMesh proxy = read_mesh(opt.proxy);
   if (global.verbose)

@@ -43,4 +43,14 @@ void print_warnings(const GlobalOptions& global, const std::string& file, const 
   for (const auto& w : warnings) std::cerr << file << ": warning: " << w << "\n";
 }
 
+Sketch read_clean_sketch(const std::string& file, const GlobalOptions& global) {
+  Warnings warnings;
+  Sketch sketch = read_sketch(file, &warnings);
+  print_warnings(global, file, warnings);
+  const CleanReport cleaning = clean(sketch);
+  if (!global.quiet)
+    for (const auto& m : cleaning.messages) std::cerr << file << ": cleaned: " << m << "\n";
+  return sketch;
+}
+
 }  // namespace sketchsurf::cli
