@@ -1,5 +1,7 @@
 #include "surfacing/proxy/proxy.h"
 
+#include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
+
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
@@ -100,6 +102,7 @@ bool ProxyOptions::valid(std::string* why) const {
   if (projection_steps < 0) return fail("proxy projection_steps must be >= 0");
   if (!(attract_weight > 0.0)) return fail("proxy attract_weight must be > 0");
   if (attract_rounds < 1) return fail("proxy attract_rounds must be >= 1");
+  if (attract_levels < 0 || attract_levels > 3) return fail("proxy attract_levels must be in [0, 3]");
   if (!(max_proxy_distance > 0.0)) return fail("proxy max_proxy_distance must be > 0");
   return true;
 }
@@ -274,7 +277,7 @@ TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const Prox
   }
   auto t0 = Clock::now();
   RemeshOptions remesh_options;
-  remesh_options.target_edge = options.edge;
+  remesh_options.target_edge = std::ldexp(options.edge, options.attract_levels);
   remesh_options.iterations = options.remesh_iterations;
   remesh(mesh, remesh_options, {}, progress);
   r.remesh_seconds = seconds_since(t0);
@@ -287,6 +290,16 @@ TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const Prox
   attract.threads = options.threads;
   AttractSummary summary;
   attract_to_points(mesh, targets, attract, progress, &summary);
+  if (options.attract_levels > 0) {
+    // Interpolating subdivision keeps the attracted vertices where they are; each level halves
+    // the edges, back to the target length.
+    OpenMesh::Subdivider::Uniform::ModifiedButterflyT<TriMesh, double> butterfly;
+    butterfly.attach(mesh);
+    butterfly(static_cast<std::size_t>(options.attract_levels));
+    butterfly.detach();
+    mesh.update_normals();
+    summary.median_after = median_nearest_vertex_distance(mesh, targets, options.threads);
+  }
   r.attract_seconds = seconds_since(t0);
   r.anchors = summary.anchors;
   r.median_distance_before = summary.median_before / frame.scale;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "surfacing/error.h"
 #include "surfacing/proxy/proxy.h"
 #include "tests/support/shapes.h"
@@ -56,6 +58,52 @@ TEST(Attract, RoughBoxIsPulledOntoACurvedSketch) {
   EXPECT_LT(median_surface_distance(proxy, sketch), 0.01 * diagonal);
   EXPECT_LT(report.median_distance_after, report.median_distance_before);
   EXPECT_GT(report.anchors, 0u);
+}
+
+TEST(Attract, CoarseSolveThenSubdivisionMatchesTheFineSolve) {
+  // The default solves on a mesh with twice the target edge and subdivides back: as close to the
+  // strokes as solving at full resolution, with edges of the target length.
+  const Sketch sketch = testing::sphere_sketch(0.5, 4);
+  const double diagonal = sketch.bounding_box().diagonal();
+  const TriMesh box = testing::rounded_box_mesh(1, Eigen::Vector3d::Constant(0.6), 0.0);
+  ProxyOptions options;
+  options.edge = 0.02;
+  ASSERT_EQ(options.attract_levels, 1);
+  const TriMesh coarse_solve = attract_proxy(box, sketch, options);
+  options.attract_levels = 0;
+  const TriMesh fine_solve = attract_proxy(box, sketch, options);
+  EXPECT_LT(median_surface_distance(coarse_solve, sketch), 0.01 * diagonal);
+  EXPECT_LT(median_surface_distance(coarse_solve, sketch),
+            median_surface_distance(fine_solve, sketch) + 0.002 * diagonal);
+  // The box shrinks onto the sphere either way (edges ~0.6 of the target); the two meshes have
+  // about the same resolution.
+  auto mean_edge = [](const TriMesh& mesh) {
+    double total = 0.0;
+    for (const auto e : mesh.edges()) total += mesh.calc_edge_length(e);
+    return total / static_cast<double>(mesh.n_edges());
+  };
+  EXPECT_NEAR(mean_edge(coarse_solve) / mean_edge(fine_solve), 1.0, 0.25);
+  EXPECT_TRUE(mesh_topology(coarse_solve).closed());
+  EXPECT_EQ(mesh_topology(coarse_solve).genus, 0);
+}
+
+TEST(Attract, NearestVertexDistanceMatchesBruteForce) {
+  const TriMesh mesh = testing::icosphere(3, 0.5, Eigen::Vector3d(0.1, -0.2, 0.3));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (const int count : {1, 2, 101}) {  // odd and even counts: the median is an element
+    Eigen::MatrixX3d targets(count, 3);
+    for (int i = 0; i < count; ++i) targets.row(i) << u(rng), u(rng), u(rng);  // inside and out
+    std::vector<double> brute;
+    for (int i = 0; i < count; ++i) {
+      double best = 1e300;
+      for (const auto v : mesh.vertices())
+        best = std::min(best, (to_eigen(mesh.point(v)) - targets.row(i).transpose()).norm());
+      brute.push_back(best);
+    }
+    std::nth_element(brute.begin(), brute.begin() + count / 2, brute.end());
+    EXPECT_DOUBLE_EQ(median_nearest_vertex_distance(mesh, targets, 2), brute[count / 2]);
+  }
 }
 
 TEST(Attract, FarAwayProxyIsRefused) {
