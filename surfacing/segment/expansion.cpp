@@ -23,12 +23,51 @@ void check_labels(const LabelingProblem& problem, const std::vector<int>& labels
 }
 
 // One alpha-expansion move at a time on a fixed problem; buffers are reused between moves.
+//
+// Each move is the binary problem of Delong et al. (2012): x_v = 0 switches v to alpha, 1 keeps
+// its label b. Before building the cut graph, the vertices whose side is the same in every
+// minimiser of that binary problem are decided (persistency). With c0 - c1 the cost of switching
+// minus keeping from v's data term and its edges to decided vertices, and U_v the weight of its
+// edges to undecided vertices (which change by at most U_v whatever those do):
+// - c1 - c0 > U_v: switching wins (switching can only drop b's label cost), v switches;
+// - c0 - c1 > U_v + h_b: keeping wins, label cost included, so v keeps and b certainly survives
+//   ("anchored"); once b is anchored, its label cost is paid anyway and the test drops h_b.
+// Deciding a vertex updates its neighbours' sums and may decide them in turn. The minimisers of
+// the reduced problem are those of the full one restricted to the undecided vertices, so the cut
+// (its smallest source side) is the same, on a much smaller graph: on PEARL's problems, mostly the
+// vertices where alpha's surface competes with the current one.
 class Expander {
  public:
   Expander(const LabelingProblem& problem, std::vector<int> labels)
       : problem_(problem), labels_(std::move(labels)), counts_(problem.label_count(), 0) {
     for (int l : labels_) ++counts_[l];
     energy_ = labeling_energy(problem_, labels_);
+    const int n = problem_.vertex_count();
+    current_cost_.resize(n);
+    for (int v = 0; v < n; ++v) current_cost_[v] = problem_.data_cost(v, labels_[v]);
+    // Adjacency (compressed rows) of the positive-weight edges, and each vertex's weight sum.
+    offsets_.assign(n + 1, 0);
+    for (std::size_t e = 0; e < problem_.edges.size(); ++e)
+      if (problem_.edge_weights[e] > 0.0) {
+        ++offsets_[problem_.edges[e][0] + 1];
+        ++offsets_[problem_.edges[e][1] + 1];
+      }
+    for (int v = 0; v < n; ++v) offsets_[v + 1] += offsets_[v];
+    neighbour_.resize(offsets_[n]);
+    weight_.resize(offsets_[n]);
+    std::vector<int> cursor(offsets_.begin(), offsets_.end() - 1);
+    weight_sum_.assign(n, 0.0);
+    for (std::size_t e = 0; e < problem_.edges.size(); ++e) {
+      const double w = problem_.edge_weights[e];
+      if (!(w > 0.0)) continue;
+      const auto [u, v] = problem_.edges[e];
+      neighbour_[cursor[u]] = v;
+      weight_[cursor[u]++] = w;
+      neighbour_[cursor[v]] = u;
+      weight_[cursor[v]++] = w;
+      weight_sum_[u] += w;
+      weight_sum_[v] += w;
+    }
   }
 
   const std::vector<int>& labels() const { return labels_; }
@@ -36,87 +75,199 @@ class Expander {
 
   // Expands `alpha`; returns true (and applies the move) if the energy strictly drops.
   bool expand(int alpha) {
-    const int n = problem_.vertex_count();
+    const int n = problem_.vertex_count(), L = problem_.label_count();
+    const double* alpha_cost = problem_.data_cost.col(alpha).data();
+    decide_undecided(alpha, alpha_cost);
+
     node_of_.resize(n);
     int nodes = 0;
-    for (int v = 0; v < n; ++v) node_of_[v] = labels_[v] == alpha ? -1 : nodes++;
-    if (nodes == 0) return false;
-
-    // Unary terms: cost0 = switch to alpha (source side), cost1 = keep the current label.
-    cost0_.resize(nodes);
-    cost1_.resize(nodes);
-    for (int v = 0; v < n; ++v)
-      if (node_of_[v] >= 0) {
-        cost0_[node_of_[v]] = problem_.data_cost(v, alpha);
-        cost1_[node_of_[v]] = problem_.data_cost(v, labels_[v]);
+    for (int v = 0; v < n; ++v) node_of_[v] = state_[v] == kFree ? nodes++ : -1;
+    if (nodes > 0) {
+      flow_.clear(nodes);
+      aux_of_.assign(L, -1);
+      for (int v = 0; v < n; ++v) {
+        const int nv = node_of_[v];
+        if (nv < 0) continue;
+        const int b = labels_[v];
+        double c0 = switch_cost_[v], c1 = keep_cost_[v];
+        // Edges between undecided vertices (decided ones are in c0, c1 already): the Potts term
+        // w [l_u != l_v] of the binary variables (0 = alpha, 1 = keep) is w [x_u != x_v] for
+        // equal labels, and w unless both switch = w x_u + w (1 - x_u) x_v otherwise.
+        for (int a = offsets_[v]; a < offsets_[v + 1]; ++a) {
+          const int u = neighbour_[a];
+          if (v > u || node_of_[u] < 0) continue;
+          const double w = weight_[a];
+          if (labels_[u] == b) {
+            flow_.add_edge(nv, node_of_[u], w, w);
+          } else {
+            c1 += w;
+            flow_.add_edge(nv, node_of_[u], w, 0.0);
+          }
+        }
+        const double m = std::min(c0, c1);
+        flow_.add_terminal_weights(nv, c1 - m, c0 - m);
+        // Label cost of b when not anchored (Delong et al. 2012): an auxiliary node y_b paying h_b
+        // on the sink side (b survives), and an edge y_b -> v of capacity h_b for every undecided
+        // vertex that would keep b, so that the cut pays h_b once unless all of b switches.
+        const double h = problem_.label_cost[b];
+        if (anchored_[b] || !(h > 0.0)) continue;
+        if (aux_of_[b] < 0) {
+          aux_of_[b] = flow_.add_node();
+          flow_.add_terminal_weights(aux_of_[b], h, 0.0);
+        }
+        flow_.add_edge(aux_of_[b], nv, h, 0.0);
       }
-    flow_.clear(nodes);
-    // Potts terms w [l_u != l_v] as functions of the two binary variables (0 = alpha, 1 = keep):
-    // same labels: w [x_u != x_v]; different labels: w unless both switch, = w x_u + w (1-x_u) x_v.
-    for (std::size_t e = 0; e < problem_.edges.size(); ++e) {
-      const double w = problem_.edge_weights[e];
-      if (w == 0.0) continue;
-      const auto [u, v] = problem_.edges[e];
-      const int nu = node_of_[u], nv = node_of_[v];
-      if (nu < 0 && nv < 0) continue;
-      if (nu < 0) {
-        cost1_[nv] += w;
-      } else if (nv < 0) {
-        cost1_[nu] += w;
-      } else if (labels_[u] == labels_[v]) {
-        flow_.add_edge(nu, nv, w, w);
-      } else {
-        cost1_[nu] += w;
-        flow_.add_edge(nu, nv, w, 0.0);
-      }
+      flow_.solve();
     }
-    // Label costs of the other used labels b (Delong et al. 2012): an auxiliary node y_b paying
-    // h_b on the sink side (b survives), and an edge y_b -> v of capacity h_b for every vertex that
-    // would keep b, so that the cut pays h_b exactly once unless every vertex of b switches.
-    aux_of_.assign(problem_.label_count(), -1);
-    for (int b = 0; b < problem_.label_count(); ++b)
-      if (b != alpha && counts_[b] > 0 && problem_.label_cost[b] > 0.0) {
-        aux_of_[b] = flow_.add_node();
-        flow_.add_terminal_weights(aux_of_[b], problem_.label_cost[b], 0.0);
-      }
-    for (int v = 0; v < n; ++v)
-      if (node_of_[v] >= 0 && aux_of_[labels_[v]] >= 0)
-        flow_.add_edge(aux_of_[labels_[v]], node_of_[v], problem_.label_cost[labels_[v]], 0.0);
-    for (int i = 0; i < nodes; ++i) {
-      const double m = std::min(cost0_[i], cost1_[i]);
-      flow_.add_terminal_weights(i, cost1_[i] - m, cost0_[i] - m);
-    }
-    flow_.solve();
 
-    // alpha's own label cost (when alpha was unused) is not in the cut: the exact energy of the
-    // proposed labeling decides.
-    candidate_ = labels_;
-    bool changed = false;
+    // The proposed labeling's energy change, over the vertices that switch. alpha's own label
+    // cost (when alpha was unused) is not in the cut: the exact change decides.
+    changed_.clear();
     for (int v = 0; v < n; ++v)
-      if (node_of_[v] >= 0 && flow_.on_source_side(node_of_[v])) {
-        candidate_[v] = alpha;
-        changed = true;
+      if (labels_[v] != alpha &&
+          (node_of_[v] >= 0 ? flow_.on_source_side(node_of_[v]) : state_[v] == kSwitch))
+        changed_.push_back(v);
+    if (changed_.empty()) return false;
+    double delta = counts_[alpha] == 0 ? problem_.label_cost[alpha] : 0.0;
+    for (int v : changed_) {
+      delta += alpha_cost[v] - current_cost_[v];
+      if (--counts_[labels_[v]] == 0) delta -= problem_.label_cost[labels_[v]];
+    }
+    // Edges at a switching vertex: [alpha != l'_u] - [l_v != l_u], each edge once (from the
+    // switching end of lower index when both switch).
+    for (int v : changed_) state_[v] = kChanged;
+    for (int v : changed_)
+      for (int a = offsets_[v]; a < offsets_[v + 1]; ++a) {
+        const int u = neighbour_[a];
+        if (state_[u] == kChanged && u < v) continue;
+        const int after = state_[u] == kChanged ? alpha : labels_[u];
+        delta += weight_[a] * ((after != alpha) - (labels_[u] != labels_[v]));
       }
-    if (!changed) return false;
-    const double candidate_energy = labeling_energy(problem_, candidate_);
-    if (!(candidate_energy < energy_)) return false;
-    for (int v = 0; v < n; ++v)
-      if (candidate_[v] != labels_[v]) {
-        --counts_[labels_[v]];
-        ++counts_[alpha];
-      }
-    labels_.swap(candidate_);
-    energy_ = candidate_energy;
+    if (!(delta < 0.0)) {
+      for (int v : changed_) ++counts_[labels_[v]];
+      return false;
+    }
+    for (int v : changed_) {
+      labels_[v] = alpha;
+      current_cost_[v] = alpha_cost[v];
+    }
+    counts_[alpha] += static_cast<int>(changed_.size());
+    energy_ += delta;
     return true;
   }
 
  private:
+  static constexpr unsigned char kFree = 0, kSwitch = 1, kKeep = 2, kChanged = 3;
+
+  // Decides what persistency decides (see the class comment), leaving state_ kSwitch / kKeep /
+  // kFree per vertex, switch_cost_ / keep_cost_ the terms of the undecided vertices from their data
+  // and their edges to decided ones (up to a common constant), and anchored_ per label.
+  void decide_undecided(int alpha, const double* alpha_cost) {
+    const int n = problem_.vertex_count();
+    state_.resize(n);
+    switch_cost_.resize(n);
+    anchored_.assign(problem_.label_count(), 0);
+    // The data terms first (contiguous, no edge visited): they decide most vertices.
+    for (int v = 0; v < n; ++v) {
+      if (labels_[v] == alpha) continue;
+      switch_cost_[v] = alpha_cost[v] - current_cost_[v];
+      if (switch_cost_[v] > weight_sum_[v] + problem_.label_cost[labels_[v]])
+        anchored_[labels_[v]] = 1;
+    }
+    free_.clear();
+    for (int v = 0; v < n; ++v) {
+      const int b = labels_[v];
+      if (b == alpha) {
+        state_[v] = kSwitch;
+        continue;
+      }
+      const double diff = switch_cost_[v], slack = weight_sum_[v];
+      if (diff < -slack) {
+        state_[v] = kSwitch;
+      } else if (diff > slack + (anchored_[b] ? 0.0 : problem_.label_cost[b])) {
+        state_[v] = kKeep;
+      } else {
+        state_[v] = kFree;
+        free_.push_back(v);
+      }
+    }
+    // The others with their edges to decided vertices, then whatever those decide in turn.
+    keep_cost_.resize(n);
+    undecided_.resize(n);
+    for (int v : free_) {
+      const int b = labels_[v];
+      double c0 = switch_cost_[v], c1 = 0.0, open = 0.0;
+      for (int a = offsets_[v]; a < offsets_[v + 1]; ++a) {
+        const int u = neighbour_[a];
+        const double w = weight_[a];
+        if (state_[u] == kSwitch) {
+          c1 += w;  // u ends alpha: v pays w if it keeps
+        } else if (state_[u] == kKeep) {
+          c0 += w;  // u keeps its label: v pays w if it switches ...
+          if (labels_[u] != b) c1 += w;  // ... and if it keeps a different label
+        } else {
+          open += w;
+        }
+      }
+      switch_cost_[v] = c0;
+      keep_cost_[v] = c1;
+      undecided_[v] = open;
+    }
+    stack_.clear();
+    for (int v : free_)
+      if (state_[v] == kFree && try_decide(v)) settle();
+  }
+
+  // Whether the undecided v is now decided; if so marks it and stacks it for settle().
+  bool try_decide(int v) {
+    const double margin = keep_cost_[v] - switch_cost_[v];
+    unsigned char side = kFree;
+    if (margin > undecided_[v]) {
+      side = kSwitch;
+    } else if (-margin > undecided_[v] + (anchored_[labels_[v]] ? 0.0 : problem_.label_cost[labels_[v]])) {
+      side = kKeep;
+      anchored_[labels_[v]] = 1;
+    }
+    if (side == kFree) return false;
+    state_[v] = side;
+    stack_.push_back(v);
+    return true;
+  }
+
+  // Passes each stacked decided vertex's edges on to its undecided neighbours, deciding them in
+  // turn when they can be.
+  void settle() {
+    while (!stack_.empty()) {
+      const int v = stack_.back();
+      stack_.pop_back();
+      const bool switches = state_[v] == kSwitch;
+      const int lv = switches ? -1 : labels_[v];
+      for (int a = offsets_[v]; a < offsets_[v + 1]; ++a) {
+        const int u = neighbour_[a];
+        if (state_[u] != kFree) continue;
+        const double w = weight_[a];
+        undecided_[u] -= w;
+        if (switches) {
+          keep_cost_[u] += w;  // v ends alpha: u pays w if it keeps
+        } else {
+          switch_cost_[u] += w;  // v keeps its label: u pays w if it switches ...
+          if (lv != labels_[u]) keep_cost_[u] += w;  // ... and if it keeps a different label
+        }
+        try_decide(u);
+      }
+    }
+  }
+
   const LabelingProblem& problem_;
   std::vector<int> labels_, counts_;
   double energy_ = 0.0;
+  std::vector<double> current_cost_;      // D(v, l_v)
+  std::vector<int> offsets_, neighbour_;  // adjacency of the positive-weight edges
+  std::vector<double> weight_, weight_sum_;
   MaxFlow flow_{0};
-  std::vector<int> node_of_, aux_of_, candidate_;
-  std::vector<double> cost0_, cost1_;
+  std::vector<unsigned char> state_, anchored_;
+  std::vector<double> switch_cost_, keep_cost_, undecided_;
+  std::vector<int> node_of_, aux_of_, changed_, stack_, free_;
 };
 
 }  // namespace
@@ -220,7 +371,7 @@ ExpansionSummary alpha_expansion(const LabelingProblem& problem, std::vector<int
     }
   }
   summary.labels = expander.labels();
-  summary.energy = expander.energy();
+  summary.energy = labeling_energy(problem, summary.labels);
   return summary;
 }
 

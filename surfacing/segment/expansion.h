@@ -14,8 +14,12 @@
 //   skipped) or after max_sweeps.
 //   At convergence E(l) <= 2 (D + S)(l*) + H(l*) + H(l) for the global minimum l* (Boykov et al.
 //   2001 with Delong et al.'s label-cost term; H = label costs).
-// - Deterministic for a seed (single-threaded). Cost per move: one max-flow on the vertices not
-//   labelled alpha plus one node per other used label with h > 0.
+// - Deterministic for a seed (single-threaded). Cost per move: a linear pass over the vertices,
+//   then one max-flow on the vertices whose side the move's binary problem does not already decide
+//   (persistency: a vertex whose data and decided-edge terms outweigh all its other edges, and the
+//   label cost at stake, takes that side in every minimiser), plus one node per other used label
+//   with h > 0 that the move might empty. The result is the cut of the full graph; on PEARL's
+//   problems the graph left is a fraction of the vertices (hat, 4263 vertices: 550 on average).
 // - Throws sketchsurf::Error (Usage) for inconsistent shapes (data_cost rows != labels' size, edge
 //   out of range or a self-loop, weights/label costs negative or not finite, non-finite data costs,
 //   an initial label out of range) and invalid options.

@@ -7,7 +7,9 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <span>
 #include <thread>
+#include <unordered_map>
 
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
@@ -41,9 +43,51 @@ constexpr double kMaxDistance2 = 1.0;
 // once made, shared between restarts.
 struct Candidate {
   ImplicitModel model;
-  std::vector<double> dist2;  // #P
+  std::vector<double> dist2;    // #P
+  std::vector<int> fitted_on;   // labelled-graph vertices (increasing) of a PEARL fit, else empty
 };
 using CandidatePtr = std::shared_ptr<const Candidate>;
+
+std::uint64_t members_hash(int degree, const std::vector<int>& members) {
+  std::uint64_t h = mix_seed(static_cast<std::uint64_t>(degree), members.size());
+  for (int v : members) h = mix_seed(h, static_cast<std::uint64_t>(v));
+  return h;
+}
+
+// The PEARL fits (steps 2 and 3) of one run by degree and labelled-graph vertices: a region that
+// has not changed since an earlier iteration gets the identical fit, looked up instead of
+// recomputed. Fits not asked for during an iteration are forgotten at its end.
+class FitCache {
+ public:
+  CandidatePtr find(int degree, const std::vector<int>& members) {
+    const auto it = entries_.find(members_hash(degree, members));
+    if (it == entries_.end()) return nullptr;
+    for (Entry& e : it->second)
+      if (e.candidate->model.degree == degree && e.candidate->fitted_on == members) {
+        e.used = true;
+        return e.candidate;
+      }
+    return nullptr;
+  }
+  void insert(CandidatePtr c) {
+    entries_[members_hash(c->model.degree, c->fitted_on)].push_back({std::move(c), true});
+  }
+  void end_iteration() {
+    for (auto it = entries_.begin(); it != entries_.end();) {
+      auto& list = it->second;
+      std::erase_if(list, [](const Entry& e) { return !e.used; });
+      for (Entry& e : list) e.used = false;
+      it = list.empty() ? entries_.erase(it) : std::next(it);
+    }
+  }
+
+ private:
+  struct Entry {
+    CandidatePtr candidate;
+    bool used = false;
+  };
+  std::unordered_map<std::uint64_t, std::vector<Entry>> entries_;
+};
 
 // Scribble constraint (Eq. 10): the labelled-graph vertices that should take label `label`.
 struct Constraint {
@@ -103,6 +147,7 @@ struct Segmenter::Impl {
   double unit = 1.0;
   StrokeGraph graph;       // normalised
   SimplifiedGraph coarse;
+  std::vector<int> children_offsets, children;  // proxy vertices of each coarse vertex (CSR)
   double fidelity_scale = 0.0;  // 1 / (eps^2 N_p)
   double smooth_scale = 0.0;    // w_smooth / W, W the proxy's total edge weight
   FitOptions fit;
@@ -113,8 +158,9 @@ struct Segmenter::Impl {
 
   // ---- models ----
 
-  CandidatePtr make_candidate(ImplicitModel model) const {
+  CandidatePtr make_candidate(ImplicitModel model, std::vector<int> fitted_on = {}) const {
     auto c = std::make_shared<Candidate>();
+    c->fitted_on = std::move(fitted_on);
     c->dist2.resize(graph.points.rows());
     for (Eigen::Index p = 0; p < graph.points.rows(); ++p) {
       const double d = model.distance(graph.points.row(p));
@@ -146,11 +192,10 @@ struct Segmenter::Impl {
     return fit_implicit(degree, P, N, n, fit_options);
   }
 
-  // Proxy vertices of each label of a labelled-graph labeling.
-  std::vector<std::vector<int>> fine_members(const std::vector<int>& labels, int count) const {
-    std::vector<std::vector<int>> members(count);
-    for (int v = 0; v < graph.vertex_count(); ++v) members[labels[coarse.fine_to_coarse[v]]].push_back(v);
-    return members;
+  // Proxy vertices merged into labelled-graph vertex vc (App. C), increasing.
+  std::span<const int> coarse_children(int vc) const {
+    return {children.data() + children_offsets[vc],
+            static_cast<std::size_t>(children_offsets[vc + 1] - children_offsets[vc])};
   }
 
   // E_fidelity (unscaled) of the labelled-graph vertices `vertices` under a candidate.
@@ -211,18 +256,39 @@ struct Segmenter::Impl {
     s.constraints = std::move(constraints);
   }
 
+  // Labelled-graph vertices of each label.
+  std::vector<std::vector<int>> coarse_members(const std::vector<int>& labels, int count) const {
+    std::vector<std::vector<int>> members(count);
+    for (int vc = 0; vc < coarse.vertex_count; ++vc) members[labels[vc]].push_back(vc);
+    return members;
+  }
+
+  // The PEARL fit (options.mu, options.lambda) of `degree` to the labelled-graph vertices
+  // `members` (increasing), through the run's cache; nullptr when they have no stroke point.
+  CandidatePtr fit_region(const std::vector<int>& members, int degree, FitCache& cache) const {
+    if (CandidatePtr c = cache.find(degree, members)) return c;
+    std::vector<int> fine;
+    for (int vc : members) {
+      const auto merged = coarse_children(vc);
+      fine.insert(fine.end(), merged.begin(), merged.end());
+    }
+    auto model = fit_vertices(fine, degree, fit);
+    if (!model) return nullptr;
+    CandidatePtr c = make_candidate(std::move(*model), members);
+    cache.insert(c);
+    return c;
+  }
+
   // Step (2): refit every used model; keep the refit only if it lowers E_fidelity on its
-  // vertices, else add it as a new candidate (§4.2).
-  void refit(RunState& s) const {
+  // vertices, else add it as a new candidate (§4.2). A model that is already the fit of its
+  // region's vertices is left as it is (its refit is itself).
+  void refit(RunState& s, FitCache& cache) const {
     const int L = static_cast<int>(s.models.size());
-    const auto members = fine_members(s.labels, L);
-    std::vector<std::vector<int>> coarse_members(L);
-    for (int vc = 0; vc < coarse.vertex_count; ++vc) coarse_members[s.labels[vc]].push_back(vc);
+    const auto members = coarse_members(s.labels, L);
     for (int a = 0; a < L; ++a) {
-      auto model = fit_vertices(members[a], s.models[a]->model.degree, fit);
-      if (!model) continue;
-      CandidatePtr c = make_candidate(std::move(*model));
-      if (fidelity_of(*c, coarse_members[a]) < fidelity_of(*s.models[a], coarse_members[a]))
+      CandidatePtr c = fit_region(members[a], s.models[a]->model.degree, cache);
+      if (!c || c == s.models[a]) continue;
+      if (fidelity_of(*c, members[a]) < fidelity_of(*s.models[a], members[a]))
         s.models[a] = std::move(c);
       else
         s.models.push_back(std::move(c));
@@ -231,14 +297,13 @@ struct Segmenter::Impl {
 
   // Step (3): lower-degree fits of every used model, and merges of the neighbouring label
   // pairs separated by the most edge weight (§4.2).
-  void propose(RunState& s, int used) const {
-    const auto members = fine_members(s.labels, used);
+  void propose(RunState& s, int used, FitCache& cache) const {
+    const auto members = coarse_members(s.labels, used);
     for (int a = 0; a < used; ++a) {
       const int d = s.models[a]->model.degree;
       const int lowest = options.all_lower_degrees ? 1 : d - 1;
       for (int lower = d - 1; lower >= lowest; --lower)
-        if (auto model = fit_vertices(members[a], lower, fit))
-          s.models.push_back(make_candidate(std::move(*model)));
+        if (CandidatePtr c = fit_region(members[a], lower, cache)) s.models.push_back(std::move(c));
     }
     std::map<std::pair<int, int>, double> between;
     for (std::size_t e = 0; e < coarse.edges.size(); ++e) {
@@ -253,16 +318,18 @@ struct Segmenter::Impl {
     const int merges = std::min<int>(options.merges_per_iteration, static_cast<int>(pairs.size()));
     for (int i = 0; i < merges; ++i) {
       const auto [a, b] = pairs[i].second;
-      std::vector<int> both = members[a];
-      both.insert(both.end(), members[b].begin(), members[b].end());
+      std::vector<int> both;
+      std::merge(members[a].begin(), members[a].end(), members[b].begin(), members[b].end(),
+                 std::back_inserter(both));
       const int degree = std::max(s.models[a]->model.degree, s.models[b]->model.degree);
-      if (auto model = fit_vertices(both, degree, fit)) s.models.push_back(make_candidate(std::move(*model)));
+      if (CandidatePtr c = fit_region(both, degree, cache)) s.models.push_back(std::move(c));
     }
   }
 
   // Algorithm 1 from step (1) on `s`, until the labeling is stable or the iteration cap.
   RunResult pearl(RunState s, std::uint64_t seed, const std::atomic<bool>& stop) const {
     RunResult r;
+    FitCache cache;
     for (int it = 0; it < options.max_iterations; ++it) {
       if (stop.load()) throw Error(ErrorKind::Cancelled, "cancelled during segmentation");
       ExpansionOptions eo;
@@ -275,12 +342,13 @@ struct Segmenter::Impl {
       r.iterations = it + 1;
       drop_unused(s);
       const int used = static_cast<int>(s.models.size());
-      refit(s);
+      refit(s, cache);
       if (stable) {
         r.converged = true;
         break;
       }
-      propose(s, used);
+      propose(s, used, cache);
+      cache.end_iteration();
     }
     drop_unused(s);
     r.energy = labeling_energy(problem(s), s.labels);
@@ -411,6 +479,14 @@ Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOp
     throw Error::processing("no stroke could be associated with the proxy: is the proxy near the strokes?");
   m.coarse = options.simplify ? simplify_graph(mesh, m.graph, ao, options.simplification)
                               : identity_graph(m.graph);
+  m.children_offsets.assign(m.coarse.vertex_count + 1, 0);
+  for (int c : m.coarse.fine_to_coarse) ++m.children_offsets[c + 1];
+  for (int c = 0; c < m.coarse.vertex_count; ++c) m.children_offsets[c + 1] += m.children_offsets[c];
+  m.children.resize(m.coarse.fine_to_coarse.size());
+  {
+    std::vector<int> cursor(m.children_offsets.begin(), m.children_offsets.end() - 1);
+    for (int v = 0; v < m.graph.vertex_count(); ++v) m.children[cursor[m.coarse.fine_to_coarse[v]]++] = v;
+  }
   m.fidelity_scale = 1.0 / (options.epsilon * options.epsilon * m.graph.association_count());
   // W of Eq. 3 on the proxy, also on a coarser graph: a cut along strokes costs the same on both.
   double W = 0.0;
