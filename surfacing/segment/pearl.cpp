@@ -110,6 +110,49 @@ struct RunResult {
   std::vector<double> history;
 };
 
+// Progress of the PEARL runs, reported after every iteration of any run but only from the calling
+// thread (callbacks need not be thread-safe). PEARL's iteration count is not known in advance (5-12
+// on the real sketches), so a run counts 1 - 0.7^iterations until it finishes, then 1; the
+// reported fraction never decreases. A cancellation seen by the caller stops every run at its next
+// iteration.
+class RunProgress {
+ public:
+  RunProgress(const Progress& progress, int runs)
+      : progress_(progress), iterations_(runs), finished_(runs), caller_(std::this_thread::get_id()) {}
+  void iteration_done(std::size_t run) {
+    ++iterations_[run];
+    report();
+  }
+  void run_done(std::size_t run) {
+    finished_[run] = true;
+    report();
+  }
+  bool stopped() const { return stop_.load(); }
+  void stop() { stop_ = true; }
+
+ private:
+  void report() {
+    if (std::this_thread::get_id() != caller_) return;
+    double sum = 0.0;
+    for (std::size_t r = 0; r < iterations_.size(); ++r)
+      sum += finished_[r] ? 1.0 : 1.0 - std::pow(0.7, iterations_[r].load());
+    reported_ = std::max(reported_, std::min(sum / static_cast<double>(iterations_.size()), 1.0));
+    try {
+      progress_.update("segmentation", reported_);
+    } catch (...) {
+      stop();
+      throw;
+    }
+  }
+
+  const Progress& progress_;
+  std::vector<std::atomic<int>> iterations_;
+  std::vector<std::atomic<bool>> finished_;
+  std::thread::id caller_;
+  std::atomic<bool> stop_{false};
+  double reported_ = 0.0;  // caller thread only
+};
+
 }  // namespace
 
 bool SegmentOptions::valid(std::string* why) const {
@@ -327,11 +370,12 @@ struct Segmenter::Impl {
   }
 
   // Algorithm 1 from step (1) on `s`, until the labeling is stable or the iteration cap.
-  RunResult pearl(RunState s, std::uint64_t seed, const std::atomic<bool>& stop) const {
+  // Reports each iteration to progress as run `run`.
+  RunResult pearl(RunState s, std::uint64_t seed, RunProgress& progress, std::size_t run) const {
     RunResult r;
     FitCache cache;
     for (int it = 0; it < options.max_iterations; ++it) {
-      if (stop.load()) throw Error(ErrorKind::Cancelled, "cancelled during segmentation");
+      if (progress.stopped()) throw Error(ErrorKind::Cancelled, "cancelled during segmentation");
       ExpansionOptions eo;
       eo.max_sweeps = options.expansion_sweeps;
       eo.seed = mix_seed(seed, static_cast<std::uint64_t>(it));
@@ -343,6 +387,7 @@ struct Segmenter::Impl {
       drop_unused(s);
       const int used = static_cast<int>(s.models.size());
       refit(s, cache);
+      progress.iteration_done(run);
       if (stable) {
         r.converged = true;
         break;
@@ -397,8 +442,8 @@ struct Segmenter::Impl {
   Segmentation rerun_with(RunState s, const Progress& progress) {
     const auto start = Clock::now();
     progress.update("segmentation", 0.0);
-    std::atomic<bool> stop{false};
-    RunResult r = pearl(std::move(s), mix_seed(options.seed, 0xfeed), stop);
+    RunProgress runs(progress, 1);
+    RunResult r = pearl(std::move(s), mix_seed(options.seed, 0xfeed), runs, 0);
     progress.update("segmentation", 1.0);
     Segmentation out = result(r.state);
     out.summary = finish_summary(out.summary.energy, r, 1, 0, {r.energy});
@@ -508,14 +553,18 @@ Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOp
   // boosted regularisation per cluster that has stroke points.
   start = Clock::now();
   progress.update("initialisation", 0.0);
+  // One eigen solve for the largest k; each k clusters a prefix of its eigenvectors.
   const auto& ks = options.cluster_counts;
+  const int max_k = std::min(*std::max_element(ks.begin(), ks.end()), m.coarse.vertex_count);
+  SpectralOptions so;
+  so.threads = 1;  // the clusterings themselves run in parallel
+  const SpectralClustering spectral(m.coarse.vertex_count, m.coarse.edges, m.coarse.weights,
+                                    std::max(max_k, 1), so);
+  progress.update("initialisation", 0.2);
   std::vector<std::vector<int>> clusters(ks.size());
   parallel_for(0, ks.size(), options.threads, [&](std::size_t i) {
-    const int k = std::min(ks[i], m.coarse.vertex_count);
-    SpectralOptions so;
-    so.threads = 1;  // the clusterings themselves run in parallel
-    clusters[i] = spectral_clustering(m.coarse.vertex_count, m.coarse.edges, m.coarse.weights, k,
-                                      mix_seed(options.seed, 1000 + i), so);
+    const int k = std::max(1, std::min(ks[i], m.coarse.vertex_count));
+    clusters[i] = spectral.cluster(k, mix_seed(options.seed, 1000 + i));
   });
   progress.update("initialisation", 0.3);
   std::vector<std::pair<std::size_t, int>> jobs;  // (clustering, cluster)
@@ -552,10 +601,8 @@ Segmentation Segmenter::run(const Progress& progress) {
   const auto start = Clock::now();
   const int runs = m.options.restarts;
   std::vector<std::optional<RunResult>> results(runs);
-  std::atomic<int> done{0};
-  std::atomic<bool> stop{false};
-  const auto caller = std::this_thread::get_id();
   progress.update("segmentation", 0.0);
+  RunProgress run_progress(progress, runs);
   parallel_for(0, static_cast<std::size_t>(runs), m.options.threads, [&](std::size_t r) {
     const std::uint64_t seed = mix_seed(m.options.seed, r);
     RunState s;
@@ -564,19 +611,11 @@ Segmentation Segmenter::run(const Progress& progress) {
     const int first = r == 0 ? 0 : static_cast<int>(seed % m.initial.size());
     s.labels.assign(m.coarse.vertex_count, first);
     try {
-      results[r] = m.pearl(std::move(s), seed, stop);
+      results[r] = m.pearl(std::move(s), seed, run_progress, r);
+      run_progress.run_done(r);
     } catch (...) {
-      stop = true;
+      run_progress.stop();
       throw;
-    }
-    ++done;
-    if (std::this_thread::get_id() == caller) {
-      try {
-        progress.update("segmentation", static_cast<double>(done) / runs);
-      } catch (...) {
-        stop = true;
-        throw;
-      }
     }
   });
   int best = 0;

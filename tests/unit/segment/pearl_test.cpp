@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -67,6 +68,36 @@ TEST(Pearl, DeterministicWhateverTheThreadCount) {
   SegmentOptions other = one;
   other.seed = 7;
   EXPECT_EQ(segment(sketch, proxy, other).models.size(), a.models.size());
+}
+
+// Users wait on this stage: progress moves within the runs (not only between restarts), never
+// backwards, and a cancellation during a run stops the segmentation with ErrorKind::Cancelled.
+TEST(Pearl, ReportsProgressWithinRunsAndCancels) {
+  const Sketch sketch = testing::cube_sketch(1.0);
+  const TriMesh proxy = cube_proxy();
+  SegmentOptions options;
+  options.restarts = 1;
+  options.threads = 1;
+  Segmenter segmenter(sketch, proxy, options);
+  std::vector<double> fractions;
+  const Segmentation s = segmenter.run(Progress([&](std::string_view stage, double f) {
+    EXPECT_EQ(stage, "segmentation");
+    fractions.push_back(f);
+    return true;
+  }));
+  ASSERT_GE(s.summary.iterations, 2);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  const auto within = std::count_if(fractions.begin(), fractions.end(),
+                                    [](double f) { return f > 0.0 && f < 1.0; });
+  EXPECT_GE(within, s.summary.iterations - 1);  // every iteration but the last reports
+  EXPECT_EQ(fractions.back(), 1.0);
+
+  try {
+    segmenter.run(Progress([](std::string_view, double f) { return f == 0.0; }));
+    FAIL() << "a cancelled run returned";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Cancelled);
+  }
 }
 
 TEST(Pearl, EnergyNeverIncreasesAndBestRestartIsKept) {
