@@ -17,11 +17,26 @@
 namespace sketchsurf {
 
 /// How E_mesh is minimised. Measured with tests/bench/extract_bench (rounded cube, 2 threads,
-/// shared 2-core machine): on 11k vertices Levenberg-Marquardt with sparse normal Cholesky
-/// (SuiteSparse) needs 12 iterations but 15 s of CPU (the Laplacian's 2-ring fill-in makes each
-/// factorisation ~1 s), CGNR 62 s; L-BFGS on a first-order function with precomputed Laplacian
-/// matrices (the paper's choice, §4.3), started from a per-vertex projection, 500 iterations:
-/// 0.85 s of CPU on 11k vertices, 3.9 s on 42.6k. L-BFGS is the default.
+/// shared 2-core machine) and on real segmentations (hat, 84k seamed vertices): on 11k vertices
+/// Levenberg-Marquardt with sparse normal Cholesky (SuiteSparse) needs 12 iterations but 15 s of
+/// CPU (the Laplacian's 2-ring fill-in makes each factorisation ~1 s), CGNR 62 s. L-BFGS on a
+/// first-order function with precomputed Laplacian matrices (the paper's choice, §4.3) is the
+/// default; the Laplacian terms make E_mesh stiff, so how it is started and scaled decides its
+/// iteration count:
+/// - started from the per-vertex projection alone and unscaled (the previous default), 500
+///   iterations end far from converged: hat E_mesh 2.15 (NO_CONVERGENCE), 42.6k cube 0.0239;
+/// - Jacobi scaling (y = x / sqrt(diag H)) halves the iterations to a given energy (hat: 4.49 ->
+///   2.43 after 200 iterations from the same start);
+/// - 5 local-global iterations after the projection (see local_global_iterations) start L-BFGS at
+///   E_mesh 4.2 instead of 888 on the hat; then 150 iterations reach 1.69, 200 reach 1.48 (42.6k
+///   cube: 0.0255 and 0.0216; without the local-global start 0.032 and 0.026);
+/// - the projection residual with a hand-written gradient instead of Jets (perf on the hat: the
+///   Jet evaluation was half of the L-BFGS time; same energies to all printed digits), and the
+///   Laplacian products row-parallel.
+/// What remains slow is the sliding of vertices along flat or gently curved surfaces that evens
+/// out the graph Laplacian: on the cube it still moves vertices by 2-8% of an edge per 10
+/// iterations at iteration 500, so a "vertices no longer move" test does not stop earlier than the
+/// iteration cap, and max_iterations (200) is the working stop.
 enum class MeshSolver {
   SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
   ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
@@ -38,17 +53,25 @@ struct MeshEnergyOptions {
   double plane_weight = 1.0e4;       ///< keeps mirror-plane vertices on the plane (ours; they are
                                      ///< snapped exactly onto it afterwards)
   int projection_steps = 5;          ///< Gauss-Newton steps moving each vertex onto its surfaces
-                                     ///< before the solve (ours: a cheap start for L-BFGS)
+                                     ///< before the solve, and Newton steps of each local step
+                                     ///< (ours: a cheap start for L-BFGS)
   double max_projection_step = 0.02; ///< longest such step, fraction of the mesh's diagonal (ours)
+  int local_global_iterations = 5;   ///< local-global iterations after the projection, 0 = none
+                                     ///< (ours, see MeshSolver; each costs ~10 L-BFGS iterations)
+  double local_global_tolerance = 1e-3;  ///< they stop early when no vertex moves more, fraction
+                                         ///< of the mean edge length
+  double global_step_tolerance = 1e-2;   ///< residual reduction of each global step's conjugate
+                                         ///< gradients (ours)
   MeshSolver solver = MeshSolver::Lbfgs;  ///< see MeshSolver
   int lbfgs_rank = 8;                ///< L-BFGS memory (Ceres max_lbfgs_rank; its default 20 spends
                                      ///< 40% of the time in the two-loop recursion, measured)
-  int max_iterations = 500;          ///< solver iterations (Ceres max_num_iterations)
+  int max_iterations = 200;          ///< solver iterations (Ceres max_num_iterations): the stop
+                                     ///< that acts on real sketches, see MeshSolver
   double function_tolerance = 1e-8;  ///< relative cost change that stops the solver (Ceres)
   double gradient_tolerance = 1e-6;  ///< largest gradient entry that stops the solver, fraction of
-                                     ///< the mesh's diagonal (the energy is in length^2, its gradient
-                                     ///< in length: about how far a vertex still is from its optimum
-                                     ///< along well-conditioned directions)
+                                     ///< the mesh's diagonal (the energy is in length^2, its
+                                     ///< Jacobi-scaled gradient in length: about how far a vertex
+                                     ///< still is from its optimum along well-conditioned directions)
   unsigned threads = 0;              ///< Ceres threads (0 = all); the result does not depend on it
   bool valid(std::string* why) const;
 };
@@ -80,10 +103,11 @@ struct MeshEnergyTerms {
 struct OptimizeSummary {
   MeshEnergyTerms initial, final;
   int iterations = 0;
+  int local_global_iterations = 0;  ///< iterations of the local-global start made
   std::string termination;  ///< Ceres' termination type and message
   std::string solver;       ///< minimizer and linear solver used
   bool usable = false;      ///< Ceres reports a usable solution
-  double seconds = 0.0;     ///< wall time of the solve
+  double seconds = 0.0;     ///< wall time of the start (projection, local-global) and the solve
 };
 
 /// w_v of Eq. 9 for a vertex between two regions whose (unoriented) normals make `angle` (rad):
@@ -97,7 +121,8 @@ std::vector<double> regularization_weights(const LabeledMesh& mesh,
                                            const MeshEnergyOptions& options);
 
 /// Minimises E_mesh over the vertex positions of `mesh`, in place (Eq. 7-9, 13), starting from
-/// each vertex moved onto its surfaces by projection_steps Gauss-Newton steps:
+/// each vertex moved onto its surfaces by projection_steps Gauss-Newton steps, then
+/// local_global_iterations local-global iterations (see MeshSolver):
 /// - E_project: each vertex, for each of its labels a, (1 / |labels|) dist_a(v)^2 with the Taubin
 ///   distance f_a / |grad f_a| (Eq. 5, 8);
 /// - E_regularize: gamma_2D w_v |v - mean(1-ring)|^2 (graph Laplacian, Nealen et al. 2006) on
@@ -134,6 +159,10 @@ struct ProjectionResidual {
     residual[0] = T(sqrt_weight) * f / norm;
     return true;
   }
+  /// The same residual with a hand-written gradient (3 values), in doubles: with
+  /// N = sqrt(|grad f|^2 + floor^2), d(f / N)/dx = grad f / N - f (H grad f) / N^3, H the Hessian
+  /// of f. What the L-BFGS path evaluates (Jets cost 3x more, measured); tested against operator().
+  double value_and_gradient(const double* x, double* gradient) const;
   /// The model must outlive the cost function.
   static ceres::CostFunction* Create(const ImplicitModel& model, double weight, double gradient_floor);
 };

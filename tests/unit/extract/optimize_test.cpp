@@ -66,6 +66,34 @@ TEST(MeshEnergyTerms, ProjectionResidualIsTheSignedTaubinDistance) {
   EXPECT_NEAR(std::abs(value), 2.0 * model.distance(x), 1e-12);
 }
 
+TEST(MeshEnergyTerms, HandWrittenProjectionGradientMatchesTheJets) {
+  // Degree 3 and 4 (Hessian terms of every kind), with and without a gradient floor.
+  ImplicitModel quartic = cubic_model();
+  quartic.degree = 4;
+  quartic.coefficients.resize(monomial_count(4));
+  for (int k = 0; k < quartic.coefficients.size(); ++k) quartic.coefficients[k] = std::cos(0.9 * k + 0.2);
+  const ImplicitModel cubic = cubic_model();
+  for (const ImplicitModel* model : {&cubic, static_cast<const ImplicitModel*>(&quartic)}) {
+    const ImplicitModel& m = *model;
+    for (double floor : {0.0, 0.3}) {
+      const detail::ProjectionResidual r{&m, std::sqrt(0.5), floor};
+      std::unique_ptr<ceres::CostFunction> jets(detail::ProjectionResidual::Create(m, 0.5, floor));
+      for (const Eigen::Vector3d x : {Eigen::Vector3d(0.3, 0.1, -0.4), Eigen::Vector3d(-0.8, 0.6, 0.2),
+                                      Eigen::Vector3d(1.5, -0.7, 0.9)}) {
+        Eigen::Vector3d gradient, expected_gradient;
+        const double value = r.value_and_gradient(x.data(), gradient.data());
+        double expected = 0.0;
+        const double* params[] = {x.data()};
+        double* jacobians[] = {expected_gradient.data()};
+        ASSERT_TRUE(jets->Evaluate(params, &expected, jacobians));
+        EXPECT_NEAR(value, expected, 1e-12 * (1.0 + std::abs(expected)));
+        EXPECT_LT((gradient - expected_gradient).norm(), 1e-10 * (1.0 + expected_gradient.norm()))
+            << gradient.transpose() << " vs " << expected_gradient.transpose();
+      }
+    }
+  }
+}
+
 TEST(MeshEnergyTerms, LaplacianOfAnAverageIsZero) {
   std::unique_ptr<ceres::CostFunction> laplacian(detail::LaplacianCost::Create(3, 100.0));
   const double center[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
@@ -187,6 +215,24 @@ TEST(OptimizeMesh, LbfgsAndSparseCholeskyReachTheSameSurface) {
     for (auto v : m.mesh.vertices()) worst = std::max(worst, testing::box_distance(to_eigen(m.mesh.point(v)), half));
   }
   EXPECT_LT(worst, 0.003 * 2 * half.norm());
+}
+
+TEST(OptimizeMesh, LocalGlobalStartLowersTheEnergyOfTheFirstIterations) {
+  const Eigen::Vector3d half(0.5, 0.5, 0.5);
+  const TriMesh proxy = testing::rounded_box_mesh(3, half, 0.1);
+  const auto models = testing::box_models(half);
+  const LabeledMesh seamed = insert_seams(proxy, testing::box_labels(proxy, half), models);
+  double energy[2];
+  for (int with : {0, 1}) {
+    LabeledMesh m = seamed;
+    MeshEnergyOptions o;
+    o.local_global_iterations = with ? 5 : 0;
+    o.max_iterations = 1;
+    const OptimizeSummary s = optimize_mesh(m, models, {}, o);
+    EXPECT_EQ(s.local_global_iterations > 0, with == 1);
+    energy[with] = s.final.total();
+  }
+  EXPECT_LT(energy[1], 0.5 * energy[0]);
 }
 
 TEST(OptimizeMesh, RejectsBadInput) {
