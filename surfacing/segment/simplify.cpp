@@ -1,5 +1,6 @@
 #include "surfacing/segment/simplify.h"
 
+#include <array>
 #include <queue>
 
 
@@ -86,11 +87,20 @@ SimplifiedGraph simplify_graph(const TriMesh& proxy_in, const StrokeGraph& graph
     }
     if (!mesh.is_collapse_ok(h)) continue;
     const auto v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
+    // Only v1 and the vertices opposite the collapsed edge (they lose that edge's duplicate) change
+    // valence: the link condition leaves no other common neighbour of v0 and v1.
+    std::array<TriMesh::VertexHandle, 2> wings;
+    for (int side = 0; side < 2; ++side) {
+      const auto hs = side == 0 ? h : mesh.opposite_halfedge_handle(h);
+      wings[side] = mesh.is_boundary(hs) ? TriMesh::VertexHandle()
+                                         : mesh.to_vertex_handle(mesh.next_halfedge_handle(hs));
+    }
     mesh.collapse(h);
     parent[v0.idx()] = v1.idx();
     ++s.collapses;
     valence[v1.idx()] = static_cast<int>(mesh.valence(v1));
-    for (auto w : mesh.vv_range(v1)) valence[w.idx()] = static_cast<int>(mesh.valence(w));
+    for (auto w : wings)
+      if (w.is_valid()) valence[w.idx()] = static_cast<int>(mesh.valence(w));
     for (auto out : mesh.voh_range(v1)) {
       for (auto hh : {out, mesh.opposite_halfedge_handle(out)})
         if (candidate(hh)) queue.emplace(merged_valence(mesh, valence, hh), hh.idx());
