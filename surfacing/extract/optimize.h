@@ -24,7 +24,7 @@ namespace sketchsurf {
 /// default; the Laplacian terms make E_mesh stiff, so how it is started and scaled decides its
 /// iteration count:
 /// - started from the per-vertex projection alone and unscaled (the previous default), 500
-///   iterations end far from converged: hat E_mesh 2.15 (NO_CONVERGENCE), 42.6k cube 0.0239;
+///   iterations end far from converged: hat E_mesh 2.15 (NO_CONVERGENCE), 42.6k cube 0.0275;
 /// - Jacobi scaling (y = x / sqrt(diag H)) halves the iterations to a given energy (hat: 4.49 ->
 ///   2.43 after 200 iterations from the same start);
 /// - 5 local-global iterations after the projection (see local_global_iterations) start L-BFGS at
@@ -36,7 +36,16 @@ namespace sketchsurf {
 /// What remains slow is the sliding of vertices along flat or gently curved surfaces that evens
 /// out the graph Laplacian: on the cube it still moves vertices by 2-8% of an edge per 10
 /// iterations at iteration 500, so a "vertices no longer move" test does not stop earlier than the
-/// iteration cap, and max_iterations (200) is the working stop.
+/// iteration cap, and max_iterations is the working stop. 300 is the smallest of 200/250/300 at
+/// which both E_mesh and the median stroke distance end at or below the previous default's on
+/// each of hat, chair, teapot, box (teapot: E 0.0620 at 200, 0.0610 at 250 but median distance
+/// +0.6%, 0.0601 at 300; previous 0.0612). Previous default -> this one, same
+/// segmentations, process CPU seconds on a loaded 2-core machine: hat (84k vertices) E 2.149 ->
+/// 1.485 (at 200 iterations), 30.5 -> 10.7 s; chair (25k) 0.1785 -> 0.1723, 9.0 -> 4.9 s; teapot
+/// (20k) 0.0612 -> 0.0601, 6.8 -> 3.5 s; box (36k) 0.685 -> 0.642 (at 200), 9.0 -> 4.3 s; median
+/// stroke distances within 1% of the previous ones. extract_bench (medians of 3, wall / main-thread
+/// CPU, load ~6.5 on 2 cores): 42.6k cube 10.1 s / 5.0 s, E 0.0275 -> 7.1 s / 2.8 s, E 0.0182;
+/// 11k cube 3.1 s / 1.2 s, E 0.0389 -> 2.4 s / 0.7 s, E 0.0086; peak RSS 128 MB.
 enum class MeshSolver {
   SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
   ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
@@ -65,7 +74,7 @@ struct MeshEnergyOptions {
   MeshSolver solver = MeshSolver::Lbfgs;  ///< see MeshSolver
   int lbfgs_rank = 8;                ///< L-BFGS memory (Ceres max_lbfgs_rank; its default 20 spends
                                      ///< 40% of the time in the two-loop recursion, measured)
-  int max_iterations = 200;          ///< solver iterations (Ceres max_num_iterations): the stop
+  int max_iterations = 300;          ///< solver iterations (Ceres max_num_iterations): the stop
                                      ///< that acts on real sketches, see MeshSolver
   double function_tolerance = 1e-8;  ///< relative cost change that stops the solver (Ceres)
   double gradient_tolerance = 1e-6;  ///< largest gradient entry that stops the solver, fraction of

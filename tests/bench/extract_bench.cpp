@@ -1,6 +1,6 @@
 // Final mesh optimisation (paper §4.3) on rounded-cube proxies labelled by their six faces:
 // subdivisions 5, 6 give 10,242 and 40,962 proxy vertices (the target: 30,000 vertices
-// under 3 s on 2 cores). The default (projection, 5 local-global iterations, 200 Jacobi-scaled
+// under 3 s on 2 cores). The default (projection, 5 local-global iterations, 300 Jacobi-scaled
 // L-BFGS iterations) is measured next to the same L-BFGS without the local-global start and with
 // the previous 500 iterations, and the trust-region solvers of MeshSolver on the smaller mesh
 // (minutes on the larger one); the choice is documented in optimize.h. Run:
