@@ -42,13 +42,13 @@ namespace sketchsurf {
 /// distance +0.6%, 0.0601 and +0.2% at 300; previous 0.0612). Previous default -> this one, same
 /// segmentations, process CPU on a loaded 2-core machine (load ~6.5: wall ~2x CPU):
 /// hat (84k seamed vertices) E 2.149 -> 1.271, median distance 2.385e-3 -> 2.226e-3 (of the
-/// diagonal), CPU 30.5 s -> ~15 s; chair (25k) 0.1785 -> 0.1723, 3.200e-3 -> 3.181e-3, 9.0 -> 4.9 s;
+/// diagonal), CPU 30.5 s -> 16.6 s; chair (25k) 0.1785 -> 0.1723, 3.200e-3 -> 3.181e-3, 9.0 -> 4.9 s;
 /// teapot (20k) 0.0612 -> 0.0601, 3.081e-3 -> 3.086e-3, 6.8 -> 3.5 s; box (36k) 0.685 -> 0.603,
-/// 1.697e-3 -> 1.709e-3, 9.0 -> ~5 s. The largest stroke distance (one point) moved both ways
+/// 1.697e-3 -> 1.709e-3, 9.0 -> 5.7 s. The largest stroke distance (one point) moved both ways
 /// (hat 0.056 -> 0.079, chair 0.031 -> 0.042, box 0.0156 -> 0.0161, teapot 0.0413 -> 0.0411).
 /// extract_bench (medians of 3, wall / main-thread CPU, same load): 42.6k cube 10.1 s / 5.0 s,
 /// E 0.0275 -> 7.1 s / 2.8 s, E 0.0182; 11k cube 3.1 s / 1.2 s, E 0.0389 -> 2.4 s / 0.7 s,
-/// E 0.0086; peak RSS 128 MB (was 114 MB).
+/// E 0.0086; peak RSS 128 MB (was 114 MB); hat scratch process 223 MB (was 193 MB).
 enum class MeshSolver {
   SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
   ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
