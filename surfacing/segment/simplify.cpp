@@ -1,7 +1,9 @@
 #include "surfacing/segment/simplify.h"
 
+#include <algorithm>
 #include <array>
-#include <queue>
+#include <functional>
+#include <vector>
 
 
 #include "surfacing/error.h"
@@ -15,6 +17,34 @@ namespace {
 int merged_valence(const TriMesh& mesh, const std::vector<int>& valence, TriMesh::HalfedgeHandle h) {
   return valence[mesh.from_vertex_handle(h).idx()] + valence[mesh.to_vertex_handle(h).idx()] - 4;
 }
+
+// Halfedges by (resulting valence, halfedge index), smallest first, as one heap of pairs would
+// give them: one min-heap of indices per valence (valences are small), much less sifting.
+class CollapseQueue {
+ public:
+  explicit CollapseQueue(int max_valence) : buckets_(max_valence + 1) {}
+  void push(int valence, int index) {
+    const int b = std::clamp(valence, 0, static_cast<int>(buckets_.size()) - 1);
+    buckets_[b].push_back(index);
+    std::push_heap(buckets_[b].begin(), buckets_[b].end(), std::greater<>());
+    lowest_ = std::min(lowest_, b);
+  }
+  // Pops the smallest entry into (*valence, *index); false when empty.
+  bool pop(int* valence, int* index) {
+    while (lowest_ < static_cast<int>(buckets_.size()) && buckets_[lowest_].empty()) ++lowest_;
+    if (lowest_ == static_cast<int>(buckets_.size())) return false;
+    auto& b = buckets_[lowest_];
+    std::pop_heap(b.begin(), b.end(), std::greater<>());
+    *valence = lowest_;
+    *index = b.back();
+    b.pop_back();
+    return true;
+  }
+
+ private:
+  std::vector<std::vector<int>> buckets_;
+  int lowest_ = 0;
+};
 
 }  // namespace
 
@@ -67,22 +97,20 @@ SimplifiedGraph simplify_graph(const TriMesh& proxy_in, const StrokeGraph& graph
            merged_valence(mesh, valence, h) <= options.max_valence;
   };
 
-  using Entry = std::pair<int, int>;  // resulting valence, halfedge index
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  CollapseQueue queue(options.max_valence);
   for (auto h : mesh.halfedges())
-    if (candidate(h)) queue.emplace(merged_valence(mesh, valence, h), h.idx());
+    if (candidate(h)) queue.push(merged_valence(mesh, valence, h), h.idx());
 
   std::vector<int> parent(nv);
   for (int v = 0; v < nv; ++v) parent[v] = v;
   SimplifiedGraph s;
-  while (!queue.empty()) {
-    const auto [queued, index] = queue.top();
-    queue.pop();
+  int queued = 0, index = 0;
+  while (queue.pop(&queued, &index)) {
     const auto h = mesh.halfedge_handle(index);
     if (!candidate(h)) continue;
     const int now = merged_valence(mesh, valence, h);
     if (now != queued) {
-      queue.emplace(now, index);
+      queue.push(now, index);
       continue;
     }
     if (!mesh.is_collapse_ok(h)) continue;
@@ -103,7 +131,7 @@ SimplifiedGraph simplify_graph(const TriMesh& proxy_in, const StrokeGraph& graph
       if (w.is_valid()) valence[w.idx()] = static_cast<int>(mesh.valence(w));
     for (auto out : mesh.voh_range(v1)) {
       for (auto hh : {out, mesh.opposite_halfedge_handle(out)})
-        if (candidate(hh)) queue.emplace(merged_valence(mesh, valence, hh), hh.idx());
+        if (candidate(hh)) queue.push(merged_valence(mesh, valence, hh), hh.idx());
     }
   }
 
