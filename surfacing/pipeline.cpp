@@ -60,6 +60,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.remesh_iterations", setter([](Params& p) -> auto& { return p.proxy.remesh_iterations; })},
       {"proxy.attract_weight", setter([](Params& p) -> auto& { return p.proxy.attract_weight; })},
       {"proxy.attract_levels", setter([](Params& p) -> auto& { return p.proxy.attract_levels; })},
+      {"proxy.attract_vipss", setter([](Params& p) -> auto& { return p.proxy.attract_vipss; })},
       {"proxy.max_proxy_distance", setter([](Params& p) -> auto& { return p.proxy.max_proxy_distance; })},
       {"segment.epsilon", setter([](Params& p) -> auto& { return p.segment.epsilon; })},
       {"segment.w_smooth", setter([](Params& p) -> auto& { return p.segment.w_smooth; })},

@@ -83,7 +83,59 @@ void fill_topology(const TriMesh& mesh, ProxyReport& report) {
   report.topology = mesh_topology(mesh);
 }
 
+// Stroke points every half edge length (unit frame): the Least-Squares Mesh targets.
+Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge) {
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& s : unit.strokes) {
+    const Stroke dense = s.points.size() > 1 ? resample(s, 0.5 * edge) : s;
+    points.insert(points.end(), dense.points.begin(), dense.points.end());
+  }
+  Eigen::MatrixX3d targets(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    targets.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  return targets;
+}
+
+// Least-Squares Mesh attraction of `mesh` (unit frame, remeshed at 2^attract_levels times the
+// target edge) to `targets`, then interpolating subdivision back to the target edge: the
+// attracted vertices stay where they are, each level halves the edges.
+void attract_and_subdivide(TriMesh& mesh, const Eigen::MatrixX3d& targets,
+                           const ProxyOptions& options, const Progress& progress, double scale,
+                           ProxyReport& r) {
+  const auto t0 = Clock::now();
+  AttractOptions attract;
+  attract.weight = options.attract_weight;
+  attract.rounds = options.attract_rounds;
+  attract.threads = options.threads;
+  AttractSummary summary;
+  attract_to_points(mesh, targets, attract, progress, &summary);
+  if (options.attract_levels > 0) {
+    OpenMesh::Subdivider::Uniform::ModifiedButterflyT<TriMesh, double> butterfly;
+    butterfly.attach(mesh);
+    butterfly(static_cast<std::size_t>(options.attract_levels));
+    butterfly.detach();
+    mesh.update_normals();
+    summary.median_after = median_nearest_vertex_distance(mesh, targets, options.threads);
+  }
+  r.attract_seconds = seconds_since(t0);
+  r.anchors = summary.anchors;
+  r.median_distance_before = summary.median_before / scale;
+  r.median_distance_after = summary.median_after / scale;
+}
+
+// Back to the sketch's frame; topology, total time and the report.
+TriMesh finish(TriMesh mesh, const Frame& frame, Clock::time_point start, ProxyReport& r,
+               ProxyReport* report) {
+  transform_mesh(mesh, Eigen::Vector3d::Zero(), 1.0 / frame.scale);
+  transform_mesh(mesh, -frame.centre, 1.0);
+  fill_topology(mesh, r);
+  r.total_seconds = seconds_since(start);
+  if (report) *report = r;
+  return mesh;
+}
+
 }  // namespace
+
 
 bool ProxyOptions::valid(std::string* why) const {
   auto fail = [&](const std::string& msg) {
@@ -172,6 +224,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   t0 = Clock::now();
   VipssOptions vipss_options;
   vipss_options.lambda = options.lambda;
+  vipss_options.box_padding = options.padding;
   vipss_options.threads = options.threads;
   const VipssResult vipss = solve_vipss(samples, vipss_options, progress);
   r.vipss = vipss.summary;
@@ -204,8 +257,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     const auto rows = static_cast<std::size_t>(p.rows());
     parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t c) {
       for (std::size_t i = c * kChunk; i < std::min(rows, (c + 1) * kChunk); ++i) {
-        const Eigen::Vector3d start = p.row(static_cast<Eigen::Index>(i)).transpose();
-        Eigen::Vector3d x = start;
+        const Eigen::Vector3d from = p.row(static_cast<Eigen::Index>(i)).transpose();
+        Eigen::Vector3d x = from;
         for (int s = 0; s < steps; ++s) {  // Newton on f along its gradient
           Eigen::Vector3d g;
           const double value = f.value_gradient(x, &g);
@@ -215,23 +268,20 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
         }
         // Vertices start within a grid cell of the surface; a longer jump (a nearly vanishing
         // gradient) would tear the mesh, so such a vertex stays where smoothing put it.
-        if (!x.allFinite() || (x - start).norm() > max_move) x = start;
+        if (!x.allFinite() || (x - from).norm() > max_move) x = from;
         p.row(static_cast<Eigen::Index>(i)) = x.transpose();
       }
     });
   };
   RemeshOptions remesh_options;
-  remesh_options.target_edge = options.edge;
+  remesh_options.target_edge =
+      options.attract_vipss ? std::ldexp(options.edge, options.attract_levels) : options.edge;
   remesh_options.iterations = options.remesh_iterations;
   remesh(mesh, remesh_options, project, progress);
   r.remesh_seconds = seconds_since(t0);
-
-  transform_mesh(mesh, Eigen::Vector3d::Zero(), 1.0 / frame.scale);
-  transform_mesh(mesh, -frame.centre, 1.0);
-  fill_topology(mesh, r);
-  r.total_seconds = seconds_since(start);
-  if (report) *report = r;
-  return mesh;
+  if (options.attract_vipss)
+    attract_and_subdivide(mesh, stroke_targets(unit, options.edge), options, progress, frame.scale, r);
+  return finish(std::move(mesh), frame, start, r, report);
 }
 
 TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const ProxyOptions& options,
@@ -246,14 +296,7 @@ TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const Prox
   const auto start = Clock::now();
   const Frame frame = stroke_frame(sketch);
   const Sketch unit = unit_strokes(sketch, frame);
-  std::vector<Eigen::Vector3d> points;
-  for (const auto& s : unit.strokes) {
-    const Stroke dense = s.points.size() > 1 ? resample(s, 0.5 * options.edge) : s;
-    points.insert(points.end(), dense.points.begin(), dense.points.end());
-  }
-  Eigen::MatrixX3d targets(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    targets.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  const Eigen::MatrixX3d targets = stroke_targets(unit, options.edge);
 
   TriMesh mesh = user_mesh;
   transform_mesh(mesh, frame.centre, frame.scale);
@@ -269,9 +312,11 @@ TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const Prox
     // bounds of the distances to the mesh.
     BoundingBox mesh_box;
     for (const auto v : mesh.vertices()) mesh_box.extend(to_eigen(mesh.point(v)));
-    std::vector<double> d(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
-      d[i] = (points[i] - points[i].cwiseMax(mesh_box.min).cwiseMin(mesh_box.max)).norm();
+    std::vector<double> d(static_cast<std::size_t>(targets.rows()));
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const Eigen::Vector3d p = targets.row(static_cast<Eigen::Index>(i)).transpose();
+      d[i] = (p - p.cwiseMax(mesh_box.min).cwiseMin(mesh_box.max)).norm();
+    }
     std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
     refuse_far(d[d.size() / 2]);
   }
@@ -282,35 +327,9 @@ TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const Prox
   remesh(mesh, remesh_options, {}, progress);
   r.remesh_seconds = seconds_since(t0);
 
-  t0 = Clock::now();
   refuse_far(median_nearest_vertex_distance(mesh, targets, options.threads));
-  AttractOptions attract;
-  attract.weight = options.attract_weight;
-  attract.rounds = options.attract_rounds;
-  attract.threads = options.threads;
-  AttractSummary summary;
-  attract_to_points(mesh, targets, attract, progress, &summary);
-  if (options.attract_levels > 0) {
-    // Interpolating subdivision keeps the attracted vertices where they are; each level halves
-    // the edges, back to the target length.
-    OpenMesh::Subdivider::Uniform::ModifiedButterflyT<TriMesh, double> butterfly;
-    butterfly.attach(mesh);
-    butterfly(static_cast<std::size_t>(options.attract_levels));
-    butterfly.detach();
-    mesh.update_normals();
-    summary.median_after = median_nearest_vertex_distance(mesh, targets, options.threads);
-  }
-  r.attract_seconds = seconds_since(t0);
-  r.anchors = summary.anchors;
-  r.median_distance_before = summary.median_before / frame.scale;
-  r.median_distance_after = summary.median_after / frame.scale;
-
-  transform_mesh(mesh, Eigen::Vector3d::Zero(), 1.0 / frame.scale);
-  transform_mesh(mesh, -frame.centre, 1.0);
-  fill_topology(mesh, r);
-  r.total_seconds = seconds_since(start);
-  if (report) *report = r;
-  return mesh;
+  attract_and_subdivide(mesh, targets, options, progress, frame.scale, r);
+  return finish(std::move(mesh), frame, start, r, report);
 }
 
 }  // namespace sketchsurf

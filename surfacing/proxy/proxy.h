@@ -28,6 +28,11 @@ struct ProxyOptions {
                                ///< remeshing round projects again)
   double attract_weight = 2.0; ///< Least-Squares Mesh positional weight (Sorkine & Cohen-Or 2004)
   int attract_rounds = 3;      ///< Least-Squares Mesh rounds (re-assign nearest vertices, re-solve)
+  bool attract_vipss = false;  ///< attract the automatic proxy to the strokes as well (paper §5,
+                               ///< Fig. 5). The membrane flattens it between strokes: right on
+                               ///< sharp, planar sketches (the bundled cube: 6 regions instead of
+                               ///< 17), wrong on curved ones (torus sketch: 0.03% -> 5% of the
+                               ///< diagonal off the true surface), hence off by default
   int attract_levels = 1;      ///< user proxy: the Least-Squares Mesh is solved on a mesh with
                                ///< 2^levels times the target edge, then subdivided back (modified
                                ///< butterfly, interpolating): the solve's fill-in grows faster than
@@ -67,7 +72,8 @@ struct ProxyReport {
 };
 
 /// The automatic proxy: samples the strokes (not the ignored ones), runs VIPSS, polygonises every
-/// component of its zero set that passes through the samples, remeshes isotropically onto it.
+/// component of its zero set that passes through the samples, remeshes isotropically onto it and
+/// (attract_vipss) attracts it to the strokes as attract_proxy() does.
 /// @return a closed, manifold, outward-oriented mesh in the sketch's units.
 /// @throws Error (Usage) for invalid options; Error (Processing) when the strokes are too few, lie
 ///         in a plane or on a line, or VIPSS finds no surface; Error (Cancelled).

@@ -8,9 +8,13 @@
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 #include <Spectra/SymEigsSolver.h>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -32,6 +36,8 @@ constexpr Index kTile = 128;
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+constexpr int kBoxGrid = 17;  // points per side of each box face checked for a closed zero set
 
 Index tiles(Index size) { return (size + kTile - 1) / kTile; }
 
@@ -150,12 +156,11 @@ class NormalEnergy : public ceres::FirstOrderFunction {
 // Reports L-BFGS progress; turns a cancel request into a clean abort.
 class LbfgsProgress : public ceres::IterationCallback {
  public:
-  LbfgsProgress(const Progress& progress, int max_iterations)
-      : progress_(progress), max_iterations_(max_iterations) {}
+  LbfgsProgress(const Progress& progress, int max_iterations, const char* stage)
+      : progress_(progress), max_iterations_(max_iterations), stage_(stage) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     try {
-      progress_.update("vipss: optimising normals",
-                       std::min(1.0, static_cast<double>(s.iteration) / max_iterations_));
+      progress_.update(stage_, std::min(1.0, static_cast<double>(s.iteration) / max_iterations_));
     } catch (...) {
       error = std::current_exception();
       return ceres::SOLVER_ABORT;
@@ -167,6 +172,7 @@ class LbfgsProgress : public ceres::IterationCallback {
  private:
   const Progress& progress_;
   int max_iterations_;
+  const char* stage_;
 };
 
 // Kernel matrix blocks of the r^3 Hermite RBF (METHOD.md section 1):
@@ -202,6 +208,7 @@ bool VipssOptions::valid(std::string* why) const {
   };
   if (!(lambda >= 0.0) || !std::isfinite(lambda)) return fail("vipss lambda must be >= 0");
   if (max_iterations < 0) return fail("vipss max_iterations must be >= 0");
+  if (!(box_padding > 0.0) || !std::isfinite(box_padding)) return fail("vipss box_padding must be > 0");
   if (!(function_tolerance > 0.0)) return fail("vipss function_tolerance must be > 0");
   if (!(gradient_tolerance > 0.0)) return fail("vipss gradient_tolerance must be > 0");
   return true;
@@ -366,70 +373,129 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
     throw Error::processing("VIPSS energy matrix is not positive definite");
   result.summary.factor_seconds += seconds_since(t0);
 
-  // L-BFGS over spherical angles, started from the normalised eigenvector.
+  // L-BFGS over spherical angles from the normalised eigenvector (VIPSS). The energy is not
+  // convex: from there a whole face of a sharp sketch can keep flipped normals and the zero set
+  // folds through it out to the box (the bundled cube: genus 2-3). When the optimum's zero set
+  // does not close inside the padded box, a second start (ours) is tried: the outward normals of
+  // the points' inertia ellipsoid. The kept optimum closes in the box if either does, else it has
+  // the lower energy (ties keep the first), so it is VIPSS's own local minimum either way.
   t0 = std::chrono::steady_clock::now();
-  std::vector<double> angles(2 * n);
-  for (Index i = 0; i < n; ++i) {
-    Eigen::Vector3d g = v0.segment<3>(3 * i);
-    g = g.norm() > 0 ? g.normalized() : Eigen::Vector3d::UnitZ();
-    angles[2 * i] = std::acos(std::clamp(g.z(), -1.0, 1.0));
-    angles[2 * i + 1] = std::atan2(g.y(), g.x());
+  // Points on the faces of the box around the points, padded as the polygonisation's box.
+  Eigen::MatrixX3d box_grid(6 * kBoxGrid * kBoxGrid, 3);
+  {
+    const Eigen::Vector3d lo = x.colwise().minCoeff().transpose().array() - options.box_padding;
+    const Eigen::Vector3d hi = x.colwise().maxCoeff().transpose().array() + options.box_padding;
+    Index row = 0;
+    for (int axis = 0; axis < 3; ++axis)
+      for (const double side : {lo[axis], hi[axis]})
+        for (int i1 = 0; i1 < kBoxGrid; ++i1)
+          for (int i2 = 0; i2 < kBoxGrid; ++i2) {
+            const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+            Eigen::Vector3d p;
+            p[axis] = side;
+            p[a1] = lo[a1] + (hi[a1] - lo[a1]) * i1 / (kBoxGrid - 1);
+            p[a2] = lo[a2] + (hi[a2] - lo[a2]) * i2 / (kBoxGrid - 1);
+            box_grid.row(row++) = p.transpose();
+          }
   }
-  auto* energy = new NormalEnergy(s);
-  ceres::GradientProblem problem(energy);  // takes ownership
-  energy->Evaluate(angles.data(), &result.summary.initial_energy, nullptr);
-  ceres::GradientProblemSolver::Options solver_options;
-  solver_options.line_search_direction_type = ceres::LBFGS;
-  solver_options.max_num_iterations = options.max_iterations;
-  solver_options.function_tolerance = options.function_tolerance;
-  solver_options.gradient_tolerance = options.gradient_tolerance;
-  solver_options.parameter_tolerance = 1e-14;
-  solver_options.logging_type = ceres::SILENT;
-  LbfgsProgress callback(progress, std::max(1, options.max_iterations));
-  solver_options.callbacks.push_back(&callback);
-  ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(solver_options, problem, angles.data(), &summary);
-  if (callback.error) std::rethrow_exception(callback.error);
-  result.summary.lbfgs_iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.summary.termination = summary.message;
-  result.summary.optimise_seconds = seconds_since(t0);
-
-  // Coefficients: b = H g; [a; c] = -A_r^-1 [G_vg b; N_g^T b] through the null-space factors.
-  Vec g(3 * n);
-  normals_from_angles(angles.data(), n, g);
-  Vec b = g;
-  cholesky_solve(s, b);
-  result.summary.final_energy = g.dot(b);
-  Vec r1(n);
-  parallel_for(0, n, threads, [&](std::size_t ii) {
-    const Index i = static_cast<Index>(ii);
-    double sum = 0.0;
-    for (Index j = 0; j < n; ++j) {
-      const Eigen::Vector3d e = (x.row(j) - x.row(i)).transpose();
-      sum += 3.0 * e.norm() * e.dot(b.segment<3>(3 * j));
+  struct Candidate {
+    HermiteRbf function;
+    Eigen::MatrixX3d normals;
+    double energy = 0.0;
+    bool closed = false;  // one sign of f all over the box's faces
+    std::string termination;
+  };
+  auto optimum = [&](std::vector<double> angles, std::size_t start) {
+    ceres::GradientProblem problem(new NormalEnergy(s));  // takes ownership
+    ceres::GradientProblemSolver::Options solver_options;
+    solver_options.line_search_direction_type = ceres::LBFGS;
+    solver_options.max_num_iterations = options.max_iterations;
+    solver_options.function_tolerance = options.function_tolerance;
+    solver_options.gradient_tolerance = options.gradient_tolerance;
+    solver_options.parameter_tolerance = 1e-14;
+    solver_options.logging_type = ceres::SILENT;
+    LbfgsProgress callback(progress, std::max(1, options.max_iterations),
+                           start == 0 ? "vipss: optimising normals"
+                                      : "vipss: optimising normals (second start)");
+    solver_options.callbacks.push_back(&callback);
+    ceres::GradientProblemSolver::Summary summary;
+    ceres::Solve(solver_options, problem, angles.data(), &summary);
+    if (callback.error) std::rethrow_exception(callback.error);
+    result.summary.lbfgs_iterations += static_cast<int>(summary.iterations.size()) - 1;
+    Candidate made;
+    made.termination = summary.message;
+    // Coefficients: b = H g; [a; c] = -A_r^-1 [G_vg b; N_g^T b] through the null-space factors.
+    Vec g(3 * n);
+    normals_from_angles(angles.data(), n, g);
+    Vec b = g;
+    cholesky_solve(s, b);
+    made.energy = g.dot(b);
+    Vec r1(n);
+    parallel_for(0, n, threads, [&](std::size_t ii) {
+      const Index i = static_cast<Index>(ii);
+      double sum = 0.0;
+      for (Index j = 0; j < n; ++j) {
+        const Eigen::Vector3d e = (x.row(j) - x.row(i)).transpose();
+        sum += 3.0 * e.norm() * e.dot(b.segment<3>(3 * j));
+      }
+      r1[i] = -sum;
+    });
+    const Eigen::Vector4d r2 = -(ngt * b);
+    const Eigen::Vector4d cr = r.transpose().triangularView<Eigen::Lower>().solve(r2);
+    Vec rhs = r1 - pvy * cr;
+    rhs.applyOnTheLeft(qr.householderQ().transpose());
+    Vec w = rhs.tail(n - 4);
+    cholesky_solve(tl, w);
+    Vec zw = Vec::Zero(n);
+    zw.tail(n - 4) = w;
+    zw.applyOnTheLeft(qr.householderQ());
+    const Vec a = y * cr + zw;
+    const Eigen::Vector4d poly =
+        r.triangularView<Eigen::Upper>().solve(y.transpose() * (r1 - pv * a));
+    made.normals.resize(n, 3);
+    Eigen::MatrixX3d bm(n, 3);
+    for (Index i = 0; i < n; ++i) {
+      made.normals.row(i) = g.segment<3>(3 * i).transpose();
+      bm.row(i) = b.segment<3>(3 * i).transpose();
     }
-    r1[i] = -sum;
-  });
-  const Eigen::Vector4d r2 = -(ngt * b);
-  const Eigen::Vector4d cr = r.transpose().triangularView<Eigen::Lower>().solve(r2);
-  Vec rhs = r1 - pvy * cr;
-  rhs.applyOnTheLeft(qr.householderQ().transpose());
-  Vec w = rhs.tail(n - 4);
-  cholesky_solve(tl, w);
-  Vec zw = Vec::Zero(n);
-  zw.tail(n - 4) = w;
-  zw.applyOnTheLeft(qr.householderQ());
-  const Vec a = y * cr + zw;
-  const Eigen::Vector4d poly =
-      r.triangularView<Eigen::Upper>().solve(y.transpose() * (r1 - pv * a));
-
-  result.normals.resize(n, 3);
-  Eigen::MatrixX3d bm(n, 3);
-  for (Index i = 0; i < n; ++i) {
-    result.normals.row(i) = g.segment<3>(3 * i).transpose();
-    bm.row(i) = b.segment<3>(3 * i).transpose();
+    made.function = HermiteRbf(x, a, bm, poly);
+    Eigen::VectorXd values;
+    made.function.values(box_grid, values, threads);
+    made.closed = (values.array() > 0.0).all() || (values.array() < 0.0).all();
+    return made;
+  };
+  auto to_angles = [n](const auto& direction) {
+    std::vector<double> angles(2 * n);
+    for (Index i = 0; i < n; ++i) {
+      Eigen::Vector3d g = direction(i);
+      g = g.norm() > 0 ? g.normalized() : Eigen::Vector3d::UnitZ();
+      angles[2 * i] = std::acos(std::clamp(g.z(), -1.0, 1.0));
+      angles[2 * i + 1] = std::atan2(g.y(), g.x());
+    }
+    return angles;
+  };
+  const std::vector<double> eigen_start =
+      to_angles([&](Index i) -> Eigen::Vector3d { return v0.segment<3>(3 * i); });
+  NormalEnergy(s).Evaluate(eigen_start.data(), &result.summary.initial_energy, nullptr);
+  Candidate best = optimum(eigen_start, 0);
+  if (!best.closed) {
+    const Eigen::Vector3d centroid = x.colwise().mean().transpose();
+    const Eigen::MatrixX3d centred = x.rowwise() - centroid.transpose();
+    const Eigen::Matrix3d shape =
+        (centred.transpose() * centred).ldlt().solve(Eigen::Matrix3d::Identity());
+    Candidate other = optimum(
+        to_angles([&](Index i) -> Eigen::Vector3d { return shape * centred.row(i).transpose(); }), 1);
+    if ((other.closed && !best.closed) || (other.closed == best.closed && other.energy < best.energy)) {
+      best = std::move(other);
+      result.summary.start = 1;
+    }
   }
-  result.function = HermiteRbf(x, a, bm, poly);
+  result.summary.optimise_seconds = seconds_since(t0);
+  result.summary.termination = best.termination;
+  result.summary.final_energy = best.energy;
+  result.summary.closed = best.closed;
+  result.normals = std::move(best.normals);
+  result.function = std::move(best.function);
   return result;
 }
 

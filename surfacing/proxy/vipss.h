@@ -13,6 +13,8 @@ namespace sketchsurf {
 struct VipssOptions {
   double lambda = 0.0;  ///< smoothing weight (VIPSS Eq. 9); 0 = exact interpolation. Absolute, in
                         ///< the units of the points (make_proxy passes points of unit diagonal)
+  double box_padding = 0.1;  ///< margin of the box whose faces must see one sign of f (a closed
+                             ///< zero set), absolute like lambda; the polygonisation's padding
   int max_iterations = 2000;           ///< L-BFGS iteration cap
   double function_tolerance = 1e-10;   ///< L-BFGS stops when the relative energy change is below
   double gradient_tolerance = 1e-10;   ///< L-BFGS stops when the gradient max-norm is below
@@ -51,7 +53,9 @@ struct VipssSummary {
   double initial_energy = 0.0;   ///< g^T H g at the normalised smallest eigenvector of H
   double final_energy = 0.0;     ///< g^T H g at the optimised unit normals
   int eigen_matvecs = 0;         ///< Lanczos products with H^-1 for the initial normals
-  int lbfgs_iterations = 0;      ///< L-BFGS iterations
+  int lbfgs_iterations = 0;      ///< L-BFGS iterations, both starts
+  int start = 0;                 ///< start of the kept normals: 0 the eigenvector, 1 the ellipsoid
+  bool closed = false;           ///< the kept f has one sign all over the padded box's faces
   std::string termination;       ///< why L-BFGS stopped
   double assemble_seconds = 0, factor_seconds = 0, eigen_seconds = 0, optimise_seconds = 0;
 };
@@ -72,7 +76,9 @@ struct VipssResult {
 /// polynomial block (with lambda added to the value-value diagonal), which is formed with a
 /// null-space Cholesky factorisation of the small block and then factorised itself (blocked,
 /// parallel, deterministic). The smallest eigenvector of H (largest of H^-1, by Lanczos) gives the
-/// initial normals, L-BFGS over spherical angles the optimum, and the gradient coefficients are
+/// initial normals; L-BFGS over spherical angles from them and from the outward normals of the
+/// points' inertia ellipsoid gives two local optima; the one whose zero set closes inside the
+/// padded box is kept, else the lower energy; and the gradient coefficients are
 /// b = H g, the value ones a back-substitution.
 /// @throws Error (Usage) for invalid options; Error (Processing) when the points are too few,
 ///         (nearly) coplanar, or the system is not positive definite; Error (Cancelled).

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <functional>
+#include <vector>
 
 #include "surfacing/error.h"
 #include "surfacing/proxy/proxy.h"
@@ -68,9 +70,7 @@ double rounded_box_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& half, do
 }
 
 TEST(Proxy, RoundedBoxSketch) {
-  // The cube's edge and face-crossing strokes pushed radially onto a rounded box. (On the sharp
-  // cube itself VIPSS's lowest-energy normals are not the outward ones: a limit of the method,
-  // which the paper works around with user proxies.)
+  // The cube's edge and face-crossing strokes pushed radially onto a rounded box.
   const Eigen::Vector3d half(0.5, 0.4, 0.3);
   const double rounding = 0.25;
   Sketch sketch = testing::cube_sketch(1.0);
@@ -87,6 +87,37 @@ TEST(Proxy, RoundedBoxSketch) {
   check_proxy(sketch,
               [&](const Eigen::Vector3d& p) { return std::abs(rounded_box_sdf(p, half, rounding)); },
               {1, 0});
+}
+
+TEST(Proxy, SharpCubeSketchGivesAClosedGenusZeroProxy) {
+  // From the eigenvector start alone VIPSS keeps the normals of one face flipped and the zero set
+  // folds out to the box (genus 2-3); the second start (the inertia ellipsoid's normals) and the
+  // closed-in-the-box selection give a rounded cube.
+  const Sketch sketch = testing::cube_sketch(1.0);
+  const double diagonal = sketch.bounding_box().diagonal();
+  auto median_off_cube = [](const TriMesh& mesh) {
+    std::vector<double> d;
+    for (const auto v : mesh.vertices())
+      d.push_back(std::abs(rounded_box_sdf(to_eigen(mesh.point(v)), Eigen::Vector3d::Constant(0.5), 0.0)));
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+    return d[d.size() / 2];
+  };
+  ProxyOptions options;
+  ProxyReport report;
+  const TriMesh proxy = make_proxy(sketch, options, {}, &report);
+  const MeshTopology t = mesh_topology(proxy);
+  EXPECT_TRUE(t.closed());
+  EXPECT_EQ(t.components, 1u);
+  EXPECT_EQ(t.genus, 0);
+  EXPECT_TRUE(report.vipss.closed);
+  const double blob = median_off_cube(proxy);
+  EXPECT_LT(blob, 0.03 * diagonal);  // a blob around the cube
+  // Attracted to the strokes as well, it flattens between them: much nearer the cube.
+  options.attract_vipss = true;
+  const TriMesh attracted = make_proxy(sketch, options, {}, &report);
+  EXPECT_EQ(mesh_topology(attracted).genus, 0);
+  EXPECT_GT(report.anchors, 0u);
+  EXPECT_LT(median_off_cube(attracted), 0.5 * blob);
 }
 
 TEST(Proxy, TwoDisjointSpheresGiveTwoComponents) {

@@ -46,9 +46,11 @@ nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt)
                   {"final_energy", r.vipss.final_energy},
                   {"lanczos_products", r.vipss.eigen_matvecs},
                   {"lbfgs_iterations", r.vipss.lbfgs_iterations},
+                  {"start", r.vipss.start == 0 ? "eigenvector" : "ellipsoid"},
+                  {"closed_in_box", r.vipss.closed},
                   {"termination", r.vipss.termination},
                   {"evaluations", r.evaluations}};
-  else
+  if (r.anchors > 0)
     j["attraction"] = {{"anchors", r.anchors},
                        {"median_distance_before", r.median_distance_before},
                        {"median_distance_after", r.median_distance_after}};
@@ -107,6 +109,10 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--from", opt->from, "Rough user proxy (.obj, .ply) to attract to the strokes")
       ->check(CLI::ExistingFile);
+  cmd->add_flag("--attract", opt->proxy.attract_vipss,
+                "Attract the VIPSS surface to the strokes too (flattens it between strokes: for "
+                "sharp, planar sketches)")
+      ->excludes("--from");
   cmd->add_option("--report", opt->report, "Write counts, genus and per-stage timings as JSON");
   cmd->add_option("--threads", opt->proxy.threads, "Worker threads (0 = all)")->capture_default_str();
   cmd->callback([opt, &global] { run_proxy(*opt, global); });
