@@ -64,8 +64,8 @@ TEST_P(ProxyData, ClosedProxyNearTheStrokesOrAClearError) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RealSketches, ProxyData, ::testing::ValuesIn(sketches()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = info.param;
+                         [](const ::testing::TestParamInfo<std::string>& param_info) {
+                           std::string name = param_info.param;
                            for (char& c : name)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return name;

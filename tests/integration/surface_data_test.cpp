@@ -44,11 +44,11 @@ TEST_P(SurfaceData, MedianStrokeDistanceUnderOnePercent) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RealSketches, SurfaceData, ::testing::ValuesIn(real_sketches()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = fs::path(info.param).stem().string();
+                         [](const ::testing::TestParamInfo<std::string>& param_info) {
+                           std::string name = fs::path(param_info.param).stem().string();
                            for (char& c : name)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return fs::path(info.param).parent_path().filename().string() + "_" + name;
+                           return fs::path(param_info.param).parent_path().filename().string() + "_" + name;
                          });
 
 }  // namespace

@@ -78,7 +78,7 @@ TEST(MeshEnergyTerms, HandWrittenProjectionGradientMatchesTheJets) {
     for (double floor : {0.0, 0.3}) {
       const detail::ProjectionResidual r{&m, std::sqrt(0.5), floor};
       std::unique_ptr<ceres::CostFunction> jets(detail::ProjectionResidual::Create(m, 0.5, floor));
-      for (const Eigen::Vector3d x : {Eigen::Vector3d(0.3, 0.1, -0.4), Eigen::Vector3d(-0.8, 0.6, 0.2),
+      for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.3, 0.1, -0.4), Eigen::Vector3d(-0.8, 0.6, 0.2),
                                       Eigen::Vector3d(1.5, -0.7, 0.9)}) {
         Eigen::Vector3d gradient, expected_gradient;
         const double value = r.value_and_gradient(x.data(), gradient.data());
