@@ -1,6 +1,6 @@
 #include "surfacing/proxy/proxy.h"
 
-#include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 
 #include <Eigen/Eigenvalues>
 #include <chrono>
@@ -97,8 +97,8 @@ Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge) {
 }
 
 // Least-Squares Mesh attraction of `mesh` (unit frame, remeshed at 2^attract_levels times the
-// target edge) to `targets`, then interpolating subdivision back to the target edge: the
-// attracted vertices stay where they are, each level halves the edges.
+// target edge) to `targets`, then Loop subdivision back to the target edge (each level halves
+// the edges; smooth, no overshoot at creases).
 void attract_and_subdivide(TriMesh& mesh, const Eigen::MatrixX3d& targets,
                            const ProxyOptions& options, const Progress& progress, double scale,
                            ProxyReport& r) {
@@ -110,10 +110,10 @@ void attract_and_subdivide(TriMesh& mesh, const Eigen::MatrixX3d& targets,
   AttractSummary summary;
   attract_to_points(mesh, targets, attract, progress, &summary);
   if (options.attract_levels > 0) {
-    OpenMesh::Subdivider::Uniform::ModifiedButterflyT<TriMesh, double> butterfly;
-    butterfly.attach(mesh);
-    butterfly(static_cast<std::size_t>(options.attract_levels));
-    butterfly.detach();
+    OpenMesh::Subdivider::Uniform::LoopT<TriMesh, double> loop;
+    loop.attach(mesh);
+    loop(static_cast<std::size_t>(options.attract_levels));
+    loop.detach();
     mesh.update_normals();
     summary.median_after = median_nearest_vertex_distance(mesh, targets, options.threads);
   }

@@ -33,10 +33,12 @@ struct ProxyOptions {
                                ///< sharp, planar sketches (the bundled cube: 6 regions instead of
                                ///< 17), wrong on curved ones (torus sketch: 0.03% -> 5% of the
                                ///< diagonal off the true surface), hence off by default
-  int attract_levels = 1;      ///< user proxy: the Least-Squares Mesh is solved on a mesh with
-                               ///< 2^levels times the target edge, then subdivided back (modified
-                               ///< butterfly, interpolating): the solve's fill-in grows faster than
-                               ///< the mesh (80k vertices: 18 s a factorisation, 20k: 0.7 s)
+  int attract_levels = 1;      ///< the Least-Squares Mesh is solved on a mesh with 2^levels times
+                               ///< the target edge, then Loop-subdivided back: the solve's fill-in
+                               ///< grows faster than the mesh (80k vertices: 18 s a factorisation,
+                               ///< 20k: 0.7 s). Loop, not an interpolating scheme: modified
+                               ///< butterfly overshoots at the attracted creases (bundled cube +
+                               ///< rough proxy: a bulged, mis-segmented face)
   double max_proxy_distance = 0.25;  ///< user proxy: largest accepted median distance from the
                                     ///< strokes to the proxy, fraction of diagonal
   unsigned threads = 0;        ///< worker threads (0 = all); never changes the result
