@@ -8,9 +8,9 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <type_traits>
 
 #include <Eigen/Sparse>
-#include <Eigen/IterativeLinearSolvers>
 
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
@@ -69,52 +69,104 @@ std::vector<double> regularization_weights(const LabeledMesh& mesh,
 
 namespace detail {
 
-double ProjectionResidual::value_and_gradient(const double* x, double* gradient) const {
-  // f, its gradient g and Hessian H in the model's normalised coordinates y = (x - center) / scale,
-  // from the same powers and monomial table as ImplicitModel::evaluate().
-  constexpr MonomialExponents kMonomials = implicit_monomials();
-  double p[3][kMaxImplicitDegree + 1] = {};  // powers the model does not need stay 0
-  const Eigen::Index count = detail::implicit_powers(*model, x, p);
-  // d[i][e] = d y_i^e / d y_i, dd[i][e] its second derivative.
-  double d[3][kMaxImplicitDegree + 1], dd[3][kMaxImplicitDegree + 1];
-  for (int i = 0; i < 3; ++i)
-    for (int e = 0; e <= kMaxImplicitDegree; ++e) {
-      d[i][e] = e >= 1 ? e * p[i][e - 1] : 0.0;
-      dd[i][e] = e >= 2 ? e * (e - 1) * p[i][e - 2] : 0.0;
-    }
-  double f = 0.0;
-  Eigen::Vector3d g = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-  for (Eigen::Index k = 0; k < count; ++k) {
-    const auto& m = kMonomials[k];
-    const double c = model->coefficients[k];
-    const double a = p[0][m[0]], b = p[1][m[1]], e = p[2][m[2]];
-    const double da = d[0][m[0]], db = d[1][m[1]], de = d[2][m[2]];
-    f += c * a * b * e;
-    g += c * Eigen::Vector3d(da * b * e, a * db * e, a * b * de);
-    H(0, 0) += c * dd[0][m[0]] * b * e;
-    H(1, 1) += c * a * dd[1][m[1]] * e;
-    H(2, 2) += c * a * b * dd[2][m[2]];
-    H(0, 1) += c * da * db * e;
-    H(0, 2) += c * da * b * de;
-    H(1, 2) += c * a * db * de;
-  }
-  H(1, 0) = H(0, 1);
-  H(2, 0) = H(0, 2);
-  H(2, 1) = H(1, 2);
-  // Back to world units: d/dx = (1 / scale) d/dy.
-  g /= model->scale;
-  H /= model->scale * model->scale;
-  const double norm = std::sqrt(g.squaredNorm() + gradient_floor * gradient_floor);
-  Eigen::Map<Eigen::Vector3d> out(gradient);
-  out = sqrt_weight * (g / norm - f * (H * g) / (norm * norm * norm));
-  return sqrt_weight * f / norm;
-}
-
 ceres::CostFunction* ProjectionResidual::Create(const ImplicitModel& model, double weight,
                                                 double gradient_floor) {
   return new ceres::AutoDiffCostFunction<ProjectionResidual, 1, 3>(
       new ProjectionResidual{&model, std::sqrt(weight), gradient_floor});
+}
+
+namespace {
+
+/// Index of the monomial with exponents (a, b, c) in implicit_monomials().
+int monomial_index(int a, int b, int c) {
+  constexpr MonomialExponents kMonomials = implicit_monomials();
+  for (std::size_t k = 0; k < kMonomials.size(); ++k)
+    if (kMonomials[k][0] == a && kMonomials[k][1] == b && kMonomials[k][2] == c) return static_cast<int>(k);
+  return -1;
+}
+
+}  // namespace
+
+ModelDerivatives::ModelDerivatives(const ImplicitModel& model)
+    : center_(model.center), inverse_scale_(1.0 / model.scale) {
+  constexpr MonomialExponents kMonomials = implicit_monomials();
+  const std::size_t count = std::min<std::size_t>(model.coefficients.size(), kMonomials.size());
+  columns_.assign(count, {});
+  const double s = inverse_scale_, s2 = s * s;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double c = model.coefficients[static_cast<Eigen::Index>(k)];
+    const int e[3] = {kMonomials[k][0], kMonomials[k][1], kMonomials[k][2]};
+    needed_power_ = std::max({needed_power_, e[0], e[1], e[2]});
+    columns_[k][0] += c;
+    // d/dy_i of y^e is e_i y^(e - 1_i), a monomial of lower degree, hence earlier in the list.
+    // Row `row` gets d/dy_i (and d/dy_j when j >= 0) of c y^e, times `factor` (world units).
+    auto add = [&](int row, int i, int j, double factor) {
+      int d[3] = {e[0], e[1], e[2]};
+      double multiplier = c * factor;
+      for (int axis : {i, j}) {
+        if (axis < 0) continue;
+        if (d[axis] == 0) return;
+        multiplier *= d[axis]--;
+      }
+      columns_[static_cast<std::size_t>(monomial_index(d[0], d[1], d[2]))][row] += multiplier;
+    };
+    for (int i = 0; i < 3; ++i) {
+      add(1 + i, i, -1, s);
+      add(4 + i, i, i, s2);
+    }
+    add(7, 0, 1, s2);
+    add(8, 0, 2, s2);
+    add(9, 1, 2, s2);
+  }
+}
+
+template <int Rows>
+void ModelDerivatives::evaluate(const double* x, double* values) const {
+  double p[3][kMaxImplicitDegree + 1];
+  for (int i = 0; i < 3; ++i) {
+    const double y = (x[i] - center_[i]) * inverse_scale_;
+    p[i][0] = 1.0;
+    for (int e = 1; e <= needed_power_; ++e) p[i][e] = p[i][e - 1] * y;
+  }
+  // Column k only feeds the values whose derivative order leaves degree(k) within the model's:
+  // the Hessian rows (4..9) columns of degree <= 2 (the first 10), the gradient rows (1..3) those
+  // of degree <= 3 (the first 20), f all of them.
+  constexpr MonomialExponents kMonomials = implicit_monomials();
+  const std::size_t count = columns_.size();
+  double sum[Rows] = {};
+  auto accumulate = [&](std::size_t from, std::size_t to, auto rows) {
+    for (std::size_t k = from; k < std::min(to, count); ++k) {
+      const auto& m = kMonomials[k];
+      const double value = p[0][m[0]] * p[1][m[1]] * p[2][m[2]];
+      const double* column = columns_[k].data();
+      for (int r = 0; r < decltype(rows)::value; ++r) sum[r] += column[r] * value;
+    }
+  };
+  accumulate(0, 10, std::integral_constant<int, Rows>());
+  accumulate(10, 20, std::integral_constant<int, std::min(Rows, 4)>());
+  accumulate(20, count, std::integral_constant<int, 1>());
+  for (int r = 0; r < Rows; ++r) values[r] = sum[r];
+}
+
+double ModelDerivatives::value_and_gradient(const double* x, double* gradient) const {
+  double v[4];
+  evaluate<4>(x, v);
+  for (int i = 0; i < 3; ++i) gradient[i] = v[1 + i];
+  return v[0];
+}
+
+double ModelDerivatives::taubin(const double* x, double sqrt_weight, double gradient_floor,
+                                double* gradient) const {
+  double v[kRows];
+  evaluate<kRows>(x, v);
+  const double f = v[0];
+  const Eigen::Vector3d g(v[1], v[2], v[3]);
+  Eigen::Matrix3d H;
+  H << v[4], v[7], v[8], v[7], v[5], v[9], v[8], v[9], v[6];
+  const double norm = std::sqrt(g.squaredNorm() + gradient_floor * gradient_floor);
+  Eigen::Map<Eigen::Vector3d> out(gradient);
+  out = sqrt_weight * (g / norm - f * (H * g) / (norm * norm * norm));
+  return sqrt_weight * f / norm;
 }
 
 LaplacianCost::LaplacianCost(int neighbors, double weight, const Eigen::Matrix3d& projection)
@@ -181,6 +233,7 @@ struct LaplacianTerm {
 /// (trust-region solvers) or evaluated in one pass as a first-order function (L-BFGS).
 struct MeshEnergy {
   const std::vector<ImplicitModel>* models = nullptr;
+  std::vector<detail::ModelDerivatives> derivatives;  // one per model
   std::vector<ProjectionTerm> project;
   std::vector<LaplacianTerm> regularize_2d, regularize_1d;
   std::vector<AttractTarget> attract;
@@ -244,8 +297,8 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
     // Projection: each term alone (in parallel), accumulated in a fixed order.
     parallel_for(0, energy_.project.size(), threads_, [&](std::size_t i) {
       const ProjectionTerm& t = energy_.project[i];
-      const detail::ProjectionResidual r{&(*energy_.models)[t.model], std::sqrt(t.weight), t.floor};
-      project_values_[i] = r.value_and_gradient(x + 3 * t.vertex, project_gradients_[i].data());
+      project_values_[i] = energy_.derivatives[t.model].taubin(x + 3 * t.vertex, std::sqrt(t.weight), t.floor,
+                                                               project_gradients_[i].data());
     });
     double total = 0.0;
     Eigen::Map<Eigen::VectorXd> G(gradient, gradient ? 3 * n_ : 0);
@@ -422,12 +475,14 @@ void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models,
 
 /// The closest point of Z(f) to x, approximately: Newton steps along the gradient
 /// (x -= f grad f / |grad f|^2), each at most `max_step` long.
-Eigen::Vector3d project_onto(const ImplicitModel& model, Eigen::Vector3d x, int steps, double max_step) {
+Eigen::Vector3d project_onto(const detail::ModelDerivatives& model, Eigen::Vector3d x, int steps,
+                             double max_step) {
   for (int step = 0; step < steps; ++step) {
-    const Eigen::Vector3d g = model.gradient(x);
+    Eigen::Vector3d g;
+    const double f = model.value_and_gradient(x.data(), g.data());
     const double gg = g.squaredNorm();
     if (!(gg > 0.0)) break;
-    Eigen::Vector3d dx = -model.value(x) / gg * g;
+    Eigen::Vector3d dx = -f / gg * g;
     if (!dx.allFinite()) break;
     const double length = dx.norm();
     if (length > max_step) dx *= max_step / length;
@@ -436,18 +491,121 @@ Eigen::Vector3d project_onto(const ImplicitModel& model, Eigen::Vector3d x, int 
   return x;
 }
 
+/// Jacobi-preconditioned conjugate gradients on A X = B for the K columns of B at once (A
+/// symmetric positive definite, `inverse_diagonal` = 1 / diag A; B and the result n x K,
+/// row-major): each iteration makes one row-parallel pass over A for all the columns, where
+/// Eigen's solver, one column per thread, passed over A per column and left one of two threads
+/// idle for three columns (19% of a hat extraction, perf). Each column stops when |residual| <=
+/// tolerance |b|, as Eigen's does. The sums run over fixed chunks of rows, so the result does not
+/// depend on `threads`.
+template <int K>
+std::vector<double> block_conjugate_gradients(const RowMatrix& A, const Eigen::VectorXd& inverse_diagonal,
+                                              const std::vector<double>& B, double tolerance,
+                                              unsigned threads) {
+  constexpr Eigen::Index kChunk = 2048;
+  const Eigen::Index n = A.rows();
+  const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
+  const std::size_t size = static_cast<std::size_t>(n) * K;
+  std::vector<double> X(size, 0.0), R = B, Z(size), P(size), Q(size);
+  using Sums = std::array<double, K>;
+  std::vector<Sums> first(static_cast<std::size_t>(chunks)), second(static_cast<std::size_t>(chunks));
+  auto for_chunks = [&](auto&& body) {
+    parallel_for(0, static_cast<std::size_t>(chunks), threads, [&](std::size_t c) {
+      const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
+      body(c, lo, std::min(n, lo + kChunk));
+    });
+  };
+  auto total = [&](const std::vector<Sums>& partial) {
+    Sums sum{};
+    for (const Sums& p : partial)
+      for (int j = 0; j < K; ++j) sum[j] += p[j];
+    return sum;
+  };
+  // x += alpha p, r -= alpha q (alpha = 0 at the start), z = M^-1 r, with the partial sums of
+  // r . z (first) and r . r (second).
+  auto step = [&](const Sums& alpha) {
+    for_chunks([&](std::size_t c, Eigen::Index lo, Eigen::Index hi) {
+      Sums rz{}, rr{};
+      for (Eigen::Index i = lo; i < hi; ++i)
+        for (int j = 0; j < K; ++j) {
+          const std::size_t at = static_cast<std::size_t>(i) * K + j;
+          X[at] += alpha[j] * P[at];
+          R[at] -= alpha[j] * Q[at];
+          Z[at] = inverse_diagonal[i] * R[at];
+          rz[j] += R[at] * Z[at];
+          rr[j] += R[at] * R[at];
+        }
+      first[c] = rz;
+      second[c] = rr;
+    });
+  };
+  Sums alpha{}, beta{}, threshold{};
+  std::fill(P.begin(), P.end(), 0.0);
+  std::fill(Q.begin(), Q.end(), 0.0);
+  step(alpha);
+  Sums rz = total(first);
+  const Sums bb = total(second);
+  std::array<bool, K> active{};
+  for (int j = 0; j < K; ++j) {
+    threshold[j] = tolerance * tolerance * bb[j];
+    active[j] = threshold[j] > 0.0;
+  }
+  P = Z;
+  for (Eigen::Index it = 0; it < 2 * n && std::find(active.begin(), active.end(), true) != active.end(); ++it) {
+    for_chunks([&](std::size_t c, Eigen::Index lo, Eigen::Index hi) {
+      Sums pq{};
+      for (Eigen::Index i = lo; i < hi; ++i) {
+        double q[K] = {};
+        for (RowMatrix::InnerIterator e(A, i); e; ++e) {
+          const double* p = &P[static_cast<std::size_t>(e.col()) * K];
+          for (int j = 0; j < K; ++j) q[j] += e.value() * p[j];
+        }
+        for (int j = 0; j < K; ++j) {
+          Q[static_cast<std::size_t>(i) * K + j] = q[j];
+          pq[j] += P[static_cast<std::size_t>(i) * K + j] * q[j];
+        }
+      }
+      first[c] = pq;
+    });
+    const Sums pq = total(first);
+    for (int j = 0; j < K; ++j) {
+      if (active[j] && !(pq[j] > 0.0)) active[j] = false;  // breakdown: keep the iterate
+      alpha[j] = active[j] ? rz[j] / pq[j] : 0.0;
+    }
+    step(alpha);
+    const Sums next = total(first), rr = total(second);
+    for (int j = 0; j < K; ++j) {
+      if (rr[j] <= threshold[j]) active[j] = false;
+      beta[j] = rz[j] != 0.0 ? next[j] / rz[j] : 0.0;
+    }
+    rz = next;
+    for_chunks([&](std::size_t, Eigen::Index lo, Eigen::Index hi) {
+      for (Eigen::Index i = lo; i < hi; ++i)
+        for (int j = 0; j < K; ++j) {
+          const std::size_t at = static_cast<std::size_t>(i) * K + j;
+          P[at] = Z[at] + beta[j] * P[at];
+        }
+    });
+  }
+  return X;
+}
+
 /// The global step of local_global(): E_mesh with each Taubin distance replaced by the distance
 /// to a fixed point is a quadratic whose normal equations split into one sparse SPD system per
 /// coordinate in the frame whose first axis is the mirror plane's normal (there the in-plane
 /// projections of the Laplacian terms and the plane penalty are diagonal): one matrix for the three
 /// coordinates, two with a mirror plane. The matrices hold the Laplacians' 2-ring products, do not
 /// depend on the points and are built once; each solve is an inexact conjugate-gradient one
-/// (Jacobi preconditioner, threads over the coordinates). A sparse Cholesky factorisation of the
-/// same matrix (Eigen SimplicialLDLT, AMD ordering) took 16.6 s on the 84k-vertex hat proxy, so
-/// the start would cost more than the whole solve (measured, see MeshEnergyOptions).
+/// (Jacobi preconditioner, the coordinates of one matrix together: block_conjugate_gradients()).
+/// A sparse Cholesky factorisation of the same matrix (Eigen SimplicialLDLT, AMD ordering) took
+/// 16.6 s on the 84k-vertex hat proxy, so the start would cost more than the whole solve; an
+/// incomplete Cholesky preconditioner (Eigen IncompleteCholesky) cuts the iterations per solve
+/// from ~95 to ~34 on the 70k-vertex hat but makes each global step slower (0.45 -> 0.6 s: its
+/// triangular solves are serial) after a 0.4 s factorisation (measured, see MeshEnergyOptions).
 class GlobalStep {
  public:
-  GlobalStep(const MeshEnergy& energy, int n, double tolerance) : n_(n), plane_(energy.plane.has_value()) {
+  GlobalStep(const MeshEnergy& energy, int n, double tolerance)
+      : n_(n), plane_(energy.plane.has_value()), tolerance_(tolerance) {
     if (plane_) {
       // Rows: the plane normal, then two in-plane axes.
       const Eigen::Vector3d normal = energy.plane->normal;
@@ -472,11 +630,11 @@ class GlobalStep {
     // system 1: the plane's normal coordinate.
     for (int s = 0; s < (plane_ ? 2 : 1); ++s) {
       const int c = s == 0 && plane_ ? 1 : 0;
-      matrix_[s] = normal_matrix(energy.regularize_2d, c) + normal_matrix(energy.regularize_1d, c);
       const Eigen::VectorXd d = s == 1 ? Eigen::VectorXd(diagonal + plane_diagonal) : diagonal;
-      matrix_[s] += Eigen::SparseMatrix<double>(d.asDiagonal());
-      solver_[s].setTolerance(tolerance);
-      solver_[s].compute(matrix_[s]);
+      Eigen::SparseMatrix<double> A = normal_matrix(energy.regularize_2d, c) + normal_matrix(energy.regularize_1d, c);
+      A += Eigen::SparseMatrix<double>(d.asDiagonal());
+      matrix_[s] = A;  // symmetric: its rows are its columns
+      inverse_diagonal_[s] = A.diagonal().cwiseMax(std::numeric_limits<double>::min()).cwiseInverse();
     }
   }
 
@@ -487,11 +645,26 @@ class GlobalStep {
     const Eigen::MatrixX3d rhs = pulled * frame_.transpose() + constant_rhs_;
     Eigen::MatrixX3d y(n_, 3);
     for (int v = 0; v < n_; ++v) y.row(v) = (frame_ * Eigen::Map<const Eigen::Vector3d>(&x[3 * v])).transpose();
-    parallel_for(0, 3, threads, [&](std::size_t c) {
-      const int s = plane_ && c == 0 ? 1 : 0;
-      const Eigen::VectorXd residual = rhs.col(c) - matrix_[s] * y.col(c);
-      y.col(c) += solver_[s].solve(residual);
-    });
+    // System 1 (the plane's normal coordinate) solves column 0, system 0 the others.
+    for (int s = 0; s < (plane_ ? 2 : 1); ++s) {
+      const int first = s == 0 && plane_ ? 1 : 0, count = plane_ ? (s == 0 ? 2 : 1) : 3;
+      // The residual rhs - A y, n x count row-major.
+      std::vector<double> residual(static_cast<std::size_t>(n_) * count);
+      parallel_for(0, static_cast<std::size_t>(n_), threads, [&](std::size_t v) {
+        for (int j = 0; j < count; ++j) {
+          double sum = rhs(static_cast<Eigen::Index>(v), first + j);
+          for (RowMatrix::InnerIterator e(matrix_[s], static_cast<Eigen::Index>(v)); e; ++e)
+            sum -= e.value() * y(e.col(), first + j);
+          residual[v * count + j] = sum;
+        }
+      });
+      const std::vector<double> change =
+          count == 3 ? block_conjugate_gradients<3>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads)
+          : count == 2 ? block_conjugate_gradients<2>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads)
+                       : block_conjugate_gradients<1>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads);
+      for (int v = 0; v < n_; ++v)
+        for (int j = 0; j < count; ++j) y(v, first + j) += change[static_cast<std::size_t>(v) * count + j];
+    }
     const Eigen::MatrixX3d world = y * frame_;
     for (int v = 0; v < n_; ++v)
       for (int c = 0; c < 3; ++c) x[3 * v + c] = world(v, c);
@@ -519,8 +692,9 @@ class GlobalStep {
   bool plane_;
   Eigen::Matrix3d frame_ = Eigen::Matrix3d::Identity();
   Eigen::MatrixX3d constant_rhs_;
-  std::array<Eigen::SparseMatrix<double>, 2> matrix_;
-  std::array<Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper>, 2> solver_;
+  double tolerance_;
+  std::array<RowMatrix, 2> matrix_;
+  std::array<Eigen::VectorXd, 2> inverse_diagonal_;
 };
 
 /// Local-global start (ours, after projective dynamics, Bouaziz et al. 2014): E_project's
@@ -540,7 +714,7 @@ int local_global(const MeshEnergy& energy, int n, int iterations, int projection
   for (int it = 1; it <= iterations; ++it) {
     parallel_for(0, energy.project.size(), threads, [&](std::size_t i) {
       const ProjectionTerm& t = energy.project[i];
-      points[i] = project_onto((*energy.models)[t.model], Eigen::Map<const Eigen::Vector3d>(&x[3 * t.vertex]),
+      points[i] = project_onto(energy.derivatives[t.model], Eigen::Map<const Eigen::Vector3d>(&x[3 * t.vertex]),
                                projection_steps, max_step);
     });
     pulled.setZero();
@@ -564,6 +738,7 @@ MeshEnergy build_energy(const LabeledMesh& lm, const std::vector<ImplicitModel>&
   const int n = static_cast<int>(mesh.n_vertices());
   MeshEnergy energy;
   energy.models = &models;
+  for (const ImplicitModel& model : models) energy.derivatives.emplace_back(model);
 
   // E_project (Eq. 8). The gradient floor is relative to each model's typical gradient.
   std::vector<std::vector<double>> gradients(models.size());

@@ -66,22 +66,29 @@ TEST(MeshEnergyTerms, ProjectionResidualIsTheSignedTaubinDistance) {
   EXPECT_NEAR(std::abs(value), 2.0 * model.distance(x), 1e-12);
 }
 
-TEST(MeshEnergyTerms, HandWrittenProjectionGradientMatchesTheJets) {
-  // Degree 3 and 4 (Hessian terms of every kind), with and without a gradient floor.
+TEST(MeshEnergyTerms, DifferentiatedTableMatchesTheModelAndTheJets) {
+  // Degree 3 and 4 (Hessian terms of every kind), off-centre and scaled, with and without a
+  // gradient floor: the table's f and grad f against ImplicitModel, its Taubin residual and
+  // gradient against the Jets of ProjectionResidual.
   ImplicitModel quartic = cubic_model();
   quartic.degree = 4;
   quartic.coefficients.resize(monomial_count(4));
   for (int k = 0; k < quartic.coefficients.size(); ++k) quartic.coefficients[k] = std::cos(0.9 * k + 0.2);
+  quartic.center = Eigen::Vector3d(0.2, -0.3, 0.1);
+  quartic.scale = 1.7;
   const ImplicitModel cubic = cubic_model();
   for (const ImplicitModel* model : {&cubic, static_cast<const ImplicitModel*>(&quartic)}) {
     const ImplicitModel& m = *model;
+    const detail::ModelDerivatives table(m);
     for (double floor : {0.0, 0.3}) {
-      const detail::ProjectionResidual r{&m, std::sqrt(0.5), floor};
       std::unique_ptr<ceres::CostFunction> jets(detail::ProjectionResidual::Create(m, 0.5, floor));
       for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.3, 0.1, -0.4), Eigen::Vector3d(-0.8, 0.6, 0.2),
                                       Eigen::Vector3d(1.5, -0.7, 0.9)}) {
+        Eigen::Vector3d g;
+        EXPECT_NEAR(table.value_and_gradient(x.data(), g.data()), m.value(x), 1e-12 * (1.0 + std::abs(m.value(x))));
+        EXPECT_LT((g - m.gradient(x)).norm(), 1e-12 * (1.0 + g.norm()));
         Eigen::Vector3d gradient, expected_gradient;
-        const double value = r.value_and_gradient(x.data(), gradient.data());
+        const double value = table.taubin(x.data(), std::sqrt(0.5), floor, gradient.data());
         double expected = 0.0;
         const double* params[] = {x.data()};
         double* jacobians[] = {expected_gradient.data()};
