@@ -245,22 +245,13 @@ struct MeshEnergy {
 
 using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
-/// y = A x, each row alone on one of `threads` threads (the result does not depend on them).
-void multiply(const RowMatrix& A, const double* x, Eigen::VectorXd& y, unsigned threads) {
-  parallel_for(0, static_cast<std::size_t>(A.rows()), threads, [&](std::size_t r) {
-    double sum = 0.0;
-    for (RowMatrix::InnerIterator it(A, static_cast<Eigen::Index>(r)); it; ++it) sum += it.value() * x[it.col()];
-    y[static_cast<Eigen::Index>(r)] = sum;
-  });
-}
-
-/// The Laplacian terms as one sparse matrix L (3 rows per term, 3 columns per vertex), so that
-/// their energy is |L x|^2 and its gradient 2 L^T L x: the "precomputed gradient matrices for the
-/// quadratic terms" of §4.3.
-RowMatrix laplacian_matrix(const std::vector<LaplacianTerm>& terms, int n) {
+/// The Laplacian terms with a projection (mirror-plane vertices) as one sparse matrix L (3 rows
+/// per term, 3 columns per vertex), so that their energy is |L x|^2 and its gradient 2 L^T L x:
+/// the "precomputed gradient matrices for the quadratic terms" of §4.3.
+RowMatrix laplacian_matrix(const std::vector<const LaplacianTerm*>& terms, int n) {
   std::vector<Eigen::Triplet<double>> entries;
   for (std::size_t t = 0; t < terms.size(); ++t) {
-    const auto& term = terms[t];
+    const auto& term = *terms[t];
     const double s = std::sqrt(term.weight);
     const double k = static_cast<double>(term.vertices.size() - 1);
     for (std::size_t j = 0; j < term.vertices.size(); ++j) {
@@ -276,16 +267,64 @@ RowMatrix laplacian_matrix(const std::vector<LaplacianTerm>& terms, int n) {
   return L;
 }
 
+/// The Laplacian terms without projection as one scalar matrix S (a row per term, a column per
+/// vertex) that acts on the three coordinates alike: |S X|^2 with X the n x 3 positions. A third
+/// of the entries and index loads of laplacian_matrix() for the same products.
+RowMatrix scalar_laplacian_matrix(const std::vector<const LaplacianTerm*>& terms, int n) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t t = 0; t < terms.size(); ++t) {
+    const auto& term = *terms[t];
+    const double s = std::sqrt(term.weight);
+    const double k = static_cast<double>(term.vertices.size() - 1);
+    for (std::size_t j = 0; j < term.vertices.size(); ++j)
+      entries.emplace_back(static_cast<int>(t), term.vertices[j], j == 0 ? s : -s / k);
+  }
+  RowMatrix S(static_cast<Eigen::Index>(terms.size()), n);
+  S.setFromTriplets(entries.begin(), entries.end());
+  return S;
+}
+
+/// Y = A X for X, Y of 3 columns stored row by row (x[3 v + c]), each row of A alone on one of
+/// `threads` threads.
+void multiply_rows3(const RowMatrix& A, const double* x, double* y, unsigned threads) {
+  parallel_for(0, static_cast<std::size_t>(A.rows()), threads, [&](std::size_t r) {
+    double sum[3] = {0.0, 0.0, 0.0};
+    for (RowMatrix::InnerIterator it(A, static_cast<Eigen::Index>(r)); it; ++it) {
+      const double* from = x + 3 * it.col();
+      for (int c = 0; c < 3; ++c) sum[c] += it.value() * from[c];
+    }
+    for (int c = 0; c < 3; ++c) y[3 * r + c] = sum[c];
+  });
+}
+
+/// The Laplacian terms of E_regularize split by kind: 2D terms without projection, then 1D ones,
+/// as rows of one scalar matrix; 2D terms with a projection (mirror-plane vertices) apart.
+struct LaplacianSplit {
+  std::vector<const LaplacianTerm*> scalar, projected;
+  std::size_t scalar_2d = 0;  // the first scalar_2d scalar rows are 2D terms
+};
+
+LaplacianSplit split_laplacians(const MeshEnergy& energy) {
+  LaplacianSplit split;
+  for (const LaplacianTerm& t : energy.regularize_2d)
+    (t.projection.isIdentity(0.0) ? split.scalar : split.projected).push_back(&t);
+  split.scalar_2d = split.scalar.size();
+  for (const LaplacianTerm& t : energy.regularize_1d)
+    (t.projection.isIdentity(0.0) ? split.scalar : split.projected).push_back(&t);
+  return split;
+}
+
 /// E_mesh evaluated in one pass for L-BFGS. Cost is half the sum of squares, as in Ceres.
 class MeshEnergyFunction final : public ceres::FirstOrderFunction {
  public:
   MeshEnergyFunction(const MeshEnergy& energy, int n, unsigned threads)
-      : energy_(energy),
-        n_(n),
-        threads_(threads),
-        laplacians_{laplacian_matrix(energy.regularize_2d, n), laplacian_matrix(energy.regularize_1d, n)},
-        transposes_{laplacians_[0].transpose(), laplacians_[1].transpose()},
-        residuals_{Eigen::VectorXd(laplacians_[0].rows()), Eigen::VectorXd(laplacians_[1].rows())},
+      : energy_(energy), n_(n), threads_(threads), split_(split_laplacians(energy)),
+        scalar_(scalar_laplacian_matrix(split_.scalar, n)),
+        scalar_transpose_(scalar_.transpose()),
+        projected_(laplacian_matrix(split_.projected, n)),
+        projected_transpose_(projected_.transpose()),
+        scalar_residuals_(3 * scalar_.rows()),
+        projected_residuals_(projected_.rows()),
         product_(3 * n),
         project_values_(energy.project.size()),
         project_gradients_(energy.project.size()) {}
@@ -307,13 +346,16 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
       total += 0.5 * project_values_[i] * project_values_[i];
       if (gradient) G.segment<3>(3 * energy_.project[i].vertex) += project_values_[i] * project_gradients_[i];
     }
-    for (int k = 0; k < 2; ++k) {
-      multiply(laplacians_[k], x, residuals_[k], threads_);
-      total += 0.5 * residuals_[k].squaredNorm();
-      if (gradient) {
-        multiply(transposes_[k], residuals_[k].data(), product_, threads_);
-        G += product_;
-      }
+    multiply_rows3(scalar_, x, scalar_residuals_.data(), threads_);
+    total += 0.5 * scalar_residuals_.squaredNorm();
+    if (gradient) {
+      multiply_rows3(scalar_transpose_, scalar_residuals_.data(), product_.data(), threads_);
+      G += product_;
+    }
+    if (projected_.rows() > 0) {
+      projected_residuals_ = projected_ * X;
+      total += 0.5 * projected_residuals_.squaredNorm();
+      if (gradient) G += projected_transpose_ * projected_residuals_;
     }
     const double sa = energy_.attract_weight;
     for (const AttractTarget& t : energy_.attract) {
@@ -333,10 +375,11 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
   /// Diagonal of the Gauss-Newton Hessian (3n entries), the projection terms counted isotropically.
   Eigen::VectorXd hessian_diagonal() const {
     Eigen::VectorXd d = Eigen::VectorXd::Zero(3 * n_);
-    for (const RowMatrix& L : laplacians_)
-      for (int r = 0; r < L.outerSize(); ++r)
-        for (RowMatrix::InnerIterator it(L, r); it; ++it)
-          d[it.col()] += it.value() * it.value();
+    for (int r = 0; r < scalar_.outerSize(); ++r)
+      for (RowMatrix::InnerIterator it(scalar_, r); it; ++it)
+        d.segment<3>(3 * it.col()).array() += it.value() * it.value();
+    for (int r = 0; r < projected_.outerSize(); ++r)
+      for (RowMatrix::InnerIterator it(projected_, r); it; ++it) d[it.col()] += it.value() * it.value();
     for (const ProjectionTerm& t : energy_.project) d.segment<3>(3 * t.vertex).array() += t.weight;
     for (const AttractTarget& t : energy_.attract) d.segment<3>(3 * t.vertex).array() += energy_.attract_weight;
     for (int v : energy_.plane_vertices) d.segment<3>(3 * v) += energy_.plane_weight * energy_.plane->normal.cwiseAbs2();
@@ -353,8 +396,11 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
       r(x + 3 * t.vertex, &value);
       e.project += value * value;
     }
-    e.regularize_2d = (laplacians_[0] * X).squaredNorm();
-    e.regularize_1d = (laplacians_[1] * X).squaredNorm();
+    Eigen::VectorXd residuals(3 * scalar_.rows());
+    multiply_rows3(scalar_, x, residuals.data(), threads_);
+    const Eigen::Index rows_2d = 3 * static_cast<Eigen::Index>(split_.scalar_2d);
+    e.regularize_2d = residuals.head(rows_2d).squaredNorm() + (projected_ * X).squaredNorm();
+    e.regularize_1d = residuals.tail(residuals.size() - rows_2d).squaredNorm();
     for (const AttractTarget& t : energy_.attract)
       e.attract += energy_.attract_weight * (X.segment<3>(3 * t.vertex) - t.point).squaredNorm();
     for (int v : energy_.plane_vertices)
@@ -366,11 +412,11 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
   const MeshEnergy& energy_;
   int n_;
   unsigned threads_;
-  // The Laplacian matrices of the 2D and 1D terms and their transposes (row-major, so that both
-  // products run row-parallel), with buffers for their products.
-  std::array<RowMatrix, 2> laplacians_, transposes_;
-  mutable std::array<Eigen::VectorXd, 2> residuals_;
-  mutable Eigen::VectorXd product_;
+  LaplacianSplit split_;
+  // The scalar and projected Laplacian matrices and their transposes (row-major, so that every
+  // product runs row-parallel), with buffers for their products.
+  RowMatrix scalar_, scalar_transpose_, projected_, projected_transpose_;
+  mutable Eigen::VectorXd scalar_residuals_, projected_residuals_, product_;
   mutable std::vector<double> project_values_;
   mutable std::vector<Eigen::Vector3d> project_gradients_;
 };
