@@ -74,10 +74,16 @@ struct ImplicitModel {
 };
 
 /// How the proxy-normal alignment term of the fit is formed; the paper writes it two ways.
-/// Measured (tests and notes): per-vertex keeps the function well behaved on noisy planar data
-/// (degree 2 on a noisy plane: half the residual, no spurious zeros on the neighbouring faces),
-/// summed recovers curved surfaces whose exact polynomial has a varying gradient (ellipsoid exact
-/// instead of ~10% of its size off; torus at degree 4: 3.5x closer).
+/// Measured on single fits (tests): per-vertex keeps the function well behaved on noisy planar data
+/// with exact normals (degree 2 on a noisy plane: half the residual), summed recovers curved
+/// surfaces whose exact polynomial has a varying gradient (ellipsoid exact instead of ~10% of its
+/// size off; torus at degree 4: 3.5x closer). Measured in PEARL (the default, summed): a rough
+/// proxy's normals are tilted, and with per-vertex alignment they pull a plane off exactly coplanar
+/// stroke points (bundled cube: a 5 degree tilt, E_fidelity 0.16 instead of ~0), so quartics win
+/// flat faces and restarts end far apart (cube: 0.013-0.22, 6-10 regions by seed; summed: every
+/// restart 0.008, six planes). On the 14 real sketches summed ends at a 20-80% lower Eq. 1 energy
+/// (chair 0.621 -> 0.368, hat 0.315 -> 0.232, torus: one quartic instead of 9 regions) with fewer
+/// regions, and segments faster (03-1-2 28.8 s -> 6.9 s).
 enum class NormalAlignment {
   /// Eq. 6 as written (and METHOD.md): mu sum_v (1 - n_v . grad f(v))^2. Asks for n . grad f = 1
   /// at every proxy vertex.
@@ -89,7 +95,7 @@ enum class NormalAlignment {
 
 struct FitOptions {
   double mu = 0.1;           // weight of the proxy-normal alignment term (Eq. 6); >= 0
-  NormalAlignment alignment = NormalAlignment::PerVertex;  // form of the alignment term (above)
+  NormalAlignment alignment = NormalAlignment::Summed;  // form of the alignment term (above)
   double lambda = 1.0;       // L2 regularisation on normalised coefficients (Eq. 6, App. B); >= 0
   double length_unit = 0.0;  // world length in which the alignment target n . grad f = 1 is
                              // measured (paper: the sketch's bbox diagonal, its sketches having
