@@ -30,8 +30,7 @@ struct ProxyOptions {
   int attract_rounds = 3;      ///< Least-Squares Mesh rounds (re-assign nearest vertices, re-solve)
   bool attract_vipss = false;  ///< attract the automatic proxy to the strokes as well (paper §5,
                                ///< Fig. 5). The membrane flattens it between strokes: right on
-                               ///< sharp, planar sketches (the bundled cube: 6 regions instead of
-                               ///< 17), wrong on curved ones (torus sketch: 0.03% -> 5% of the
+                               ///< sharp, planar sketches (a cube's faces), wrong on curved ones (torus sketch: 0.03% -> 5% of the
                                ///< diagonal off the true surface), hence off by default
   int attract_levels = 1;      ///< the Least-Squares Mesh is solved on a mesh with 2^levels times
                                ///< the target edge, then Loop-subdivided back: the solve's fill-in
