@@ -210,6 +210,108 @@ ceres::CostFunction* PlaneResidual::Create(const Plane& plane, double weight) {
       new PlaneResidual{plane, std::sqrt(weight)});
 }
 
+template <int K>
+std::vector<double> block_conjugate_gradients(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A, const Eigen::VectorXd& inverse_diagonal,
+                                              const std::vector<double>& B, double tolerance,
+                                              unsigned threads) {
+  constexpr Eigen::Index kChunk = 2048;
+  const Eigen::Index n = A.rows();
+  const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
+  const std::size_t size = static_cast<std::size_t>(n) * K;
+  std::vector<double> X(size, 0.0), R = B, Z(size), P(size), Q(size);
+  using Sums = std::array<double, K>;
+  std::vector<Sums> first(static_cast<std::size_t>(chunks)), second(static_cast<std::size_t>(chunks));
+  auto for_chunks = [&](auto&& body) {
+    parallel_for(0, static_cast<std::size_t>(chunks), threads, [&](std::size_t c) {
+      const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
+      body(c, lo, std::min(n, lo + kChunk));
+    });
+  };
+  auto total = [&](const std::vector<Sums>& partial) {
+    Sums sum{};
+    for (const Sums& p : partial)
+      for (int j = 0; j < K; ++j) sum[j] += p[j];
+    return sum;
+  };
+  // x += alpha p, r -= alpha q (alpha = 0 at the start), z = M^-1 r, with the partial sums of
+  // r . z (first) and r . r (second).
+  auto step = [&](const Sums& alpha) {
+    for_chunks([&](std::size_t c, Eigen::Index lo, Eigen::Index hi) {
+      Sums rz{}, rr{};
+      for (Eigen::Index i = lo; i < hi; ++i)
+        for (int j = 0; j < K; ++j) {
+          const std::size_t at = static_cast<std::size_t>(i) * K + j;
+          X[at] += alpha[j] * P[at];
+          R[at] -= alpha[j] * Q[at];
+          Z[at] = inverse_diagonal[i] * R[at];
+          rz[j] += R[at] * Z[at];
+          rr[j] += R[at] * R[at];
+        }
+      first[c] = rz;
+      second[c] = rr;
+    });
+  };
+  Sums alpha{}, beta{}, threshold{};
+  std::fill(P.begin(), P.end(), 0.0);
+  std::fill(Q.begin(), Q.end(), 0.0);
+  step(alpha);
+  Sums rz = total(first);
+  const Sums bb = total(second);
+  std::array<bool, K> active{};
+  for (int j = 0; j < K; ++j) {
+    threshold[j] = tolerance * tolerance * bb[j];
+    active[j] = threshold[j] > 0.0;
+  }
+  P = Z;
+  for (Eigen::Index it = 0; it < 2 * n && std::find(active.begin(), active.end(), true) != active.end(); ++it) {
+    for_chunks([&](std::size_t c, Eigen::Index lo, Eigen::Index hi) {
+      Sums pq{};
+      for (Eigen::Index i = lo; i < hi; ++i) {
+        double q[K] = {};
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator e(A, i); e; ++e) {
+          const double* p = &P[static_cast<std::size_t>(e.col()) * K];
+          for (int j = 0; j < K; ++j) q[j] += e.value() * p[j];
+        }
+        for (int j = 0; j < K; ++j) {
+          Q[static_cast<std::size_t>(i) * K + j] = q[j];
+          pq[j] += P[static_cast<std::size_t>(i) * K + j] * q[j];
+        }
+      }
+      first[c] = pq;
+    });
+    const Sums pq = total(first);
+    for (int j = 0; j < K; ++j) {
+      if (active[j] && !(pq[j] > 0.0)) active[j] = false;  // breakdown: keep the iterate
+      alpha[j] = active[j] ? rz[j] / pq[j] : 0.0;
+    }
+    step(alpha);
+    const Sums next = total(first), rr = total(second);
+    for (int j = 0; j < K; ++j) {
+      if (rr[j] <= threshold[j]) active[j] = false;
+      beta[j] = rz[j] != 0.0 ? next[j] / rz[j] : 0.0;
+    }
+    rz = next;
+    for_chunks([&](std::size_t, Eigen::Index lo, Eigen::Index hi) {
+      for (Eigen::Index i = lo; i < hi; ++i)
+        for (int j = 0; j < K; ++j) {
+          const std::size_t at = static_cast<std::size_t>(i) * K + j;
+          P[at] = Z[at] + beta[j] * P[at];
+        }
+    });
+  }
+  return X;
+}
+
+template std::vector<double> block_conjugate_gradients<1>(const Eigen::SparseMatrix<double, Eigen::RowMajor>&,
+                                                          const Eigen::VectorXd&, const std::vector<double>&,
+                                                          double, unsigned);
+template std::vector<double> block_conjugate_gradients<2>(const Eigen::SparseMatrix<double, Eigen::RowMajor>&,
+                                                          const Eigen::VectorXd&, const std::vector<double>&,
+                                                          double, unsigned);
+template std::vector<double> block_conjugate_gradients<3>(const Eigen::SparseMatrix<double, Eigen::RowMajor>&,
+                                                          const Eigen::VectorXd&, const std::vector<double>&,
+                                                          double, unsigned);
+
 }  // namespace detail
 
 namespace {
@@ -537,104 +639,6 @@ Eigen::Vector3d project_onto(const detail::ModelDerivatives& model, Eigen::Vecto
   return x;
 }
 
-/// Jacobi-preconditioned conjugate gradients on A X = B for the K columns of B at once (A
-/// symmetric positive definite, `inverse_diagonal` = 1 / diag A; B and the result n x K,
-/// row-major): each iteration makes one row-parallel pass over A for all the columns, where
-/// Eigen's solver, one column per thread, passed over A per column and left one of two threads
-/// idle for three columns (19% of a hat extraction, perf). Each column stops when |residual| <=
-/// tolerance |b|, as Eigen's does. The sums run over fixed chunks of rows, so the result does not
-/// depend on `threads`.
-template <int K>
-std::vector<double> block_conjugate_gradients(const RowMatrix& A, const Eigen::VectorXd& inverse_diagonal,
-                                              const std::vector<double>& B, double tolerance,
-                                              unsigned threads) {
-  constexpr Eigen::Index kChunk = 2048;
-  const Eigen::Index n = A.rows();
-  const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
-  const std::size_t size = static_cast<std::size_t>(n) * K;
-  std::vector<double> X(size, 0.0), R = B, Z(size), P(size), Q(size);
-  using Sums = std::array<double, K>;
-  std::vector<Sums> first(static_cast<std::size_t>(chunks)), second(static_cast<std::size_t>(chunks));
-  auto for_chunks = [&](auto&& body) {
-    parallel_for(0, static_cast<std::size_t>(chunks), threads, [&](std::size_t c) {
-      const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
-      body(c, lo, std::min(n, lo + kChunk));
-    });
-  };
-  auto total = [&](const std::vector<Sums>& partial) {
-    Sums sum{};
-    for (const Sums& p : partial)
-      for (int j = 0; j < K; ++j) sum[j] += p[j];
-    return sum;
-  };
-  // x += alpha p, r -= alpha q (alpha = 0 at the start), z = M^-1 r, with the partial sums of
-  // r . z (first) and r . r (second).
-  auto step = [&](const Sums& alpha) {
-    for_chunks([&](std::size_t c, Eigen::Index lo, Eigen::Index hi) {
-      Sums rz{}, rr{};
-      for (Eigen::Index i = lo; i < hi; ++i)
-        for (int j = 0; j < K; ++j) {
-          const std::size_t at = static_cast<std::size_t>(i) * K + j;
-          X[at] += alpha[j] * P[at];
-          R[at] -= alpha[j] * Q[at];
-          Z[at] = inverse_diagonal[i] * R[at];
-          rz[j] += R[at] * Z[at];
-          rr[j] += R[at] * R[at];
-        }
-      first[c] = rz;
-      second[c] = rr;
-    });
-  };
-  Sums alpha{}, beta{}, threshold{};
-  std::fill(P.begin(), P.end(), 0.0);
-  std::fill(Q.begin(), Q.end(), 0.0);
-  step(alpha);
-  Sums rz = total(first);
-  const Sums bb = total(second);
-  std::array<bool, K> active{};
-  for (int j = 0; j < K; ++j) {
-    threshold[j] = tolerance * tolerance * bb[j];
-    active[j] = threshold[j] > 0.0;
-  }
-  P = Z;
-  for (Eigen::Index it = 0; it < 2 * n && std::find(active.begin(), active.end(), true) != active.end(); ++it) {
-    for_chunks([&](std::size_t c, Eigen::Index lo, Eigen::Index hi) {
-      Sums pq{};
-      for (Eigen::Index i = lo; i < hi; ++i) {
-        double q[K] = {};
-        for (RowMatrix::InnerIterator e(A, i); e; ++e) {
-          const double* p = &P[static_cast<std::size_t>(e.col()) * K];
-          for (int j = 0; j < K; ++j) q[j] += e.value() * p[j];
-        }
-        for (int j = 0; j < K; ++j) {
-          Q[static_cast<std::size_t>(i) * K + j] = q[j];
-          pq[j] += P[static_cast<std::size_t>(i) * K + j] * q[j];
-        }
-      }
-      first[c] = pq;
-    });
-    const Sums pq = total(first);
-    for (int j = 0; j < K; ++j) {
-      if (active[j] && !(pq[j] > 0.0)) active[j] = false;  // breakdown: keep the iterate
-      alpha[j] = active[j] ? rz[j] / pq[j] : 0.0;
-    }
-    step(alpha);
-    const Sums next = total(first), rr = total(second);
-    for (int j = 0; j < K; ++j) {
-      if (rr[j] <= threshold[j]) active[j] = false;
-      beta[j] = rz[j] != 0.0 ? next[j] / rz[j] : 0.0;
-    }
-    rz = next;
-    for_chunks([&](std::size_t, Eigen::Index lo, Eigen::Index hi) {
-      for (Eigen::Index i = lo; i < hi; ++i)
-        for (int j = 0; j < K; ++j) {
-          const std::size_t at = static_cast<std::size_t>(i) * K + j;
-          P[at] = Z[at] + beta[j] * P[at];
-        }
-    });
-  }
-  return X;
-}
 
 /// The global step of local_global(): E_mesh with each Taubin distance replaced by the distance
 /// to a fixed point is a quadratic whose normal equations split into one sparse SPD system per
@@ -705,9 +709,9 @@ class GlobalStep {
         }
       });
       const std::vector<double> change =
-          count == 3 ? block_conjugate_gradients<3>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads)
-          : count == 2 ? block_conjugate_gradients<2>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads)
-                       : block_conjugate_gradients<1>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads);
+          count == 3 ? detail::block_conjugate_gradients<3>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads)
+          : count == 2 ? detail::block_conjugate_gradients<2>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads)
+                       : detail::block_conjugate_gradients<1>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads);
       for (int v = 0; v < n_; ++v)
         for (int j = 0; j < count; ++j) y(v, first + j) += change[static_cast<std::size_t>(v) * count + j];
     }

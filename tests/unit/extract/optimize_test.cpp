@@ -3,6 +3,8 @@
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <memory>
 
 #include "surfacing/error.h"
@@ -250,6 +252,117 @@ TEST(OptimizeMesh, RejectsBadInput) {
   bad.sharp_angle = 0.1;
   m.labels.assign(mesh.n_vertices(), {0});
   EXPECT_THROW(optimize_mesh(m, {plane_model({0, 0, 1}, 0)}, {}, bad), Error);
+}
+
+TEST(BlockConjugateGradients, SolvesEachColumnAsIfAloneWhateverTheThreadCount) {
+  // A = 100 L^T L + D for the graph Laplacian L of a 600-vertex path: stiff and SPD, with the
+  // 2-ring pattern of the global step's matrix (condition ~1e4).
+  const int n = 600;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n; ++i) {
+    const std::vector<int> neighbours = i == 0 ? std::vector<int>{1}
+                                        : i == n - 1 ? std::vector<int>{n - 2}
+                                                     : std::vector<int>{i - 1, i + 1};
+    entries.emplace_back(i, i, 1.0);
+    for (int j : neighbours) entries.emplace_back(i, j, -1.0 / neighbours.size());
+  }
+  Eigen::SparseMatrix<double> L(n, n);
+  L.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseMatrix<double> A = 100.0 * Eigen::SparseMatrix<double>(L.transpose() * L);
+  for (int i = 0; i < n; ++i) A.coeffRef(i, i) += 0.05 + 0.01 * (i % 7);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> R(A);
+  const Eigen::VectorXd inverse_diagonal = A.diagonal().cwiseInverse();
+  Eigen::MatrixXd B(n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 3; ++j) B(i, j) = std::sin(0.05 * i * (j + 1) + j) + (j == 2 ? 0.3 : 0.0);
+  auto packed = [&](std::initializer_list<int> columns) {
+    std::vector<double> b;
+    for (int i = 0; i < n; ++i)
+      for (int j : columns) b.push_back(B(i, j));
+    return b;
+  };
+  const Eigen::MatrixXd expected = Eigen::MatrixXd(A).ldlt().solve(B);
+  const std::vector<double> X = detail::block_conjugate_gradients<3>(R, inverse_diagonal, packed({0, 1, 2}), 1e-10, 2);
+  for (int j = 0; j < 3; ++j) {
+    Eigen::VectorXd x(n);
+    for (int i = 0; i < n; ++i) x[i] = X[3 * i + j];
+    EXPECT_LT((x - expected.col(j)).norm(), 1e-5 * expected.col(j).norm()) << "column " << j;
+    // The same column solved alone: the same numbers.
+    const std::vector<double> alone = detail::block_conjugate_gradients<1>(R, inverse_diagonal, packed({j}), 1e-10, 2);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(alone[i], X[3 * i + j]) << "column " << j << " row " << i;
+  }
+  const std::vector<double> pair = detail::block_conjugate_gradients<2>(R, inverse_diagonal, packed({1, 2}), 1e-10, 2);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(pair[2 * i + 1], X[3 * i + 2]);
+  for (unsigned threads : {1u, 3u})
+    EXPECT_EQ(detail::block_conjugate_gradients<3>(R, inverse_diagonal, packed({0, 1, 2}), 1e-10, threads), X)
+        << threads << " threads";
+  // A loose tolerance stops early with the residual it promises.
+  const std::vector<double> loose = detail::block_conjugate_gradients<1>(R, inverse_diagonal, packed({0}), 1e-2, 2);
+  const Eigen::VectorXd residual = B.col(0) - A * Eigen::Map<const Eigen::VectorXd>(loose.data(), n);
+  EXPECT_LE(residual.norm(), 1e-2 * B.col(0).norm());
+  EXPECT_GT((Eigen::Map<const Eigen::VectorXd>(loose.data(), n) - expected.col(0)).norm(), 0.0);
+}
+
+TEST(OptimizeMesh, ReportsEachTermOfAHalfSheetOnAMirrorPlane) {
+  // A 5 x 5 grid in x, y in [0, 1], bumped in z, cut by the mirror plane x = 0 (its left column
+  // is on the plane, slightly off it in x): every kind of Laplacian term (2D, 2D restricted to the
+  // plane, 1D along the open boundary), the plane penalty and E_project, against hand sums.
+  const int k = 5;
+  Eigen::MatrixX3d V(k * k, 3);
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i)
+      V.row(j * k + i) << (i == 0 ? 0.01 * std::sin(3.0 * j) : i / (k - 1.0)), j / (k - 1.0),
+          0.05 * std::sin(1.3 * i + 2.1 * j);
+  Eigen::MatrixX3i F(2 * (k - 1) * (k - 1), 3);
+  int f = 0;
+  for (int j = 0; j + 1 < k; ++j)
+    for (int i = 0; i + 1 < k; ++i) {
+      const int a = j * k + i;
+      F.row(f++) << a, a + 1, a + k + 1;
+      F.row(f++) << a, a + k + 1, a + k;
+    }
+  LabeledMesh m{mesh_from_matrices(V, F), std::vector<std::vector<int>>(k * k, {0}), std::vector<int>(k * k, 0)};
+  MeshConstraints c;
+  c.plane = Plane{};  // x = 0
+  for (int j = 0; j < k; ++j) c.plane_vertices.push_back(j * k);
+  MeshEnergyOptions o;
+  o.max_iterations = 1;
+  const OptimizeSummary s = optimize_mesh(m, {plane_model({0, 0, 1}, 0)}, c, o);
+
+  const TriMesh grid = mesh_from_matrices(V, F);
+  double project = 0.0, laplacian_2d = 0.0, laplacian_1d = 0.0, plane = 0.0;
+  for (auto v : grid.vertices()) {
+    const Eigen::Vector3d p = V.row(v.idx()).transpose();
+    project += p.z() * p.z();
+    Eigen::Vector3d ring = Eigen::Vector3d::Zero(), rim = Eigen::Vector3d::Zero();
+    int ring_count = 0, rim_count = 0;
+    for (auto h : v.outgoing_halfedges()) {
+      const Eigen::Vector3d q = V.row(h.to().idx()).transpose();
+      ring += q;
+      ++ring_count;
+      if (h.is_boundary() || h.opp().is_boundary()) {
+        rim += q;
+        ++rim_count;
+      }
+    }
+    const Eigen::Vector3d delta = p - ring / ring_count;
+    if (v.idx() % k == 0) {  // on the plane: the in-plane part of Delta_2D, and the penalty
+      laplacian_2d += o.gamma_2d * delta.tail<2>().squaredNorm();
+      plane += o.plane_weight * p.x() * p.x();
+    } else if (grid.is_boundary(v)) {
+      ASSERT_EQ(rim_count, 2);
+      laplacian_1d += o.gamma_1d * (p - rim / rim_count).squaredNorm();
+    } else {
+      laplacian_2d += o.gamma_2d * delta.squaredNorm();
+    }
+  }
+  // The projection's gradient floor (1e-3 of the model's gradient) shrinks E_project by 1e-6.
+  EXPECT_NEAR(s.initial.project, project, 2e-6 * project);
+  EXPECT_NEAR(s.initial.regularize_2d, laplacian_2d, 1e-12 * laplacian_2d);
+  EXPECT_NEAR(s.initial.regularize_1d, laplacian_1d, 1e-12 * laplacian_1d);
+  EXPECT_NEAR(s.initial.plane, plane, 1e-12 * plane);
+  EXPECT_GT(laplacian_2d * laplacian_1d * plane, 0.0);
+  EXPECT_LT(s.final.total(), s.initial.total());
 }
 
 TEST(OptimizeMesh, CancelsThroughProgress) {
