@@ -18,8 +18,10 @@
 //   then one max-flow on the vertices whose side the move's binary problem does not already decide
 //   (persistency: a vertex whose data and decided-edge terms outweigh all its other edges, and the
 //   label cost at stake, takes that side in every minimiser), plus one node per other used label
-//   with h > 0 that the move might empty. The result is the cut of the full graph; on PEARL's
-//   problems the graph left is a fraction of the vertices (hat, 4263 vertices: 550 on average).
+//   with h > 0 that the move might empty (a label whose vertices all switching would cost more
+//   than its label cost saves is anchored first, as a whole). The result is the cut of the full
+//   graph (ExpansionOptions::reduce = false cuts the full graph, the tests' reference); on PEARL's
+//   problems the graph left is a fraction of the vertices (chair, 6860 vertices: 870 on average).
 // - Throws sketchsurf::Error (Usage) for inconsistent shapes (data_cost rows != labels' size, edge
 //   out of range or a self-loop, weights/label costs negative or not finite, non-finite data costs,
 //   an initial label out of range) and invalid options.
@@ -62,6 +64,8 @@ LabelingEnergy labeling_energy_terms(const LabelingProblem& problem, const std::
 struct ExpansionOptions {
   int max_sweeps = 10;       // full passes over the labels (>= 1)
   std::uint64_t seed = 123;  // order in which labels are expanded (public code: seed 123)
+  bool reduce = true;        // decide what persistency decides before each cut (same labels,
+                             // much smaller graphs); false cuts the whole graph (tests' reference)
   bool valid(std::string* why) const;
 };
 

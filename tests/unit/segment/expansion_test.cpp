@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -154,6 +155,107 @@ TEST(Expansion, SmoothnessFollowsWeakEdges) {
   p.label_cost = Eigen::Vector2d(0.1, 0.1);
   const ExpansionSummary s = alpha_expansion(p, std::vector<int>(n, 0));
   for (int v = 0; v < n; ++v) EXPECT_EQ(s.labels[v], v < 6 ? 0 : 1) << v;
+}
+
+// A PEARL-like problem on a side x side triangulated grid: `cells` Voronoi cells, one label fitting
+// each cell, plus near-copies of those labels, labels fitting two neighbouring cells (merges) and
+// labels fitting nothing well; a third of the vertices have no data (cost 0 for every label, like
+// proxy vertices without stroke points); small, uneven edge weights; label costs that matter.
+LabelingProblem pearl_like_problem(std::mt19937& rng, int side, int cells) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const int n = side * side;
+  std::vector<double> cx(cells), cy(cells);
+  for (int c = 0; c < cells; ++c) cx[c] = side * uniform(rng), cy[c] = side * uniform(rng);
+  std::vector<int> cell(n);
+  for (int v = 0; v < n; ++v) {
+    const double x = v % side, y = v / side;
+    int best = 0;
+    for (int c = 1; c < cells; ++c)
+      if (std::hypot(x - cx[c], y - cy[c]) < std::hypot(x - cx[best], y - cy[best])) best = c;
+    cell[v] = best;
+  }
+  const int labels = 4 * cells;
+  LabelingProblem p;
+  p.data_cost.resize(n, labels);
+  for (int v = 0; v < n; ++v) {
+    const bool no_data = uniform(rng) < 0.33;
+    for (int a = 0; a < labels; ++a) {
+      const int c = a % cells, kind = a / cells;
+      bool fits = cell[v] == c;
+      if (kind == 2) fits = fits || cell[v] == (c + 1) % cells;  // a merge
+      if (kind == 3) fits = false;                               // fits nothing
+      const double cost = (fits ? 0.02 : 1.0) * (0.5 + uniform(rng));
+      p.data_cost(v, a) = no_data ? 0.0 : kind == 1 ? 1.05 * cost : cost;
+    }
+  }
+  auto add = [&](int u, int v) {
+    p.edges.push_back({u, v});
+    p.edge_weights.push_back((cell[u] == cell[v] ? 0.05 : 0.005) * (0.5 + uniform(rng)));
+  };
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      const int v = y * side + x;
+      if (x + 1 < side) add(v, v + 1);
+      if (y + 1 < side) add(v, v + side);
+      if (x + 1 < side && y + 1 < side) add(v, v + side + 1);
+    }
+  p.label_cost.resize(labels);
+  for (int a = 0; a < labels; ++a) p.label_cost[a] = 0.05 + 0.3 * uniform(rng);
+  return p;
+}
+
+// Deciding vertices and whole labels by persistency before each cut is exact: the same labels,
+// moves and energies as cutting the full graph (Delong et al.'s construction on every vertex).
+TEST(Expansion, PersistencyReductionGivesTheSameLabelsAsTheFullCut) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 12; ++trial) {
+    const bool pearl_like = trial % 2 == 0;
+    const LabelingProblem p = pearl_like ? pearl_like_problem(rng, 24, 4 + trial % 5)
+                                         : random_problem(rng, 30, 5, trial % 4 != 1);
+    std::vector<int> initial(p.vertex_count(), 0);
+    if (trial % 3 == 0)
+      for (int& l : initial) l = std::uniform_int_distribution<int>(0, p.label_count() - 1)(rng);
+    ExpansionOptions reduced, full;
+    reduced.seed = full.seed = 100 + trial;
+    full.reduce = false;
+    const ExpansionSummary a = alpha_expansion(p, initial, reduced);
+    const ExpansionSummary b = alpha_expansion(p, initial, full);
+    ASSERT_EQ(a.labels, b.labels) << "trial " << trial;
+    EXPECT_EQ(a.accepted_moves, b.accepted_moves) << "trial " << trial;
+    ASSERT_EQ(a.energy_trace.size(), b.energy_trace.size()) << "trial " << trial;
+    for (std::size_t i = 0; i < a.energy_trace.size(); ++i)
+      EXPECT_NEAR(a.energy_trace[i], b.energy_trace[i], 1e-12) << "trial " << trial;
+    EXPECT_GT(a.accepted_moves, 0) << "trial " << trial;  // the problems are not trivial
+  }
+}
+
+// Label 1 holds vertices 3 and 4 of a chain, each better there than label 0 by g: keeping it costs
+// its cut (2 edges of 0.1) and its label cost 0.1, so it survives only if 2 g > 0.2. Neither vertex
+// alone outweighs its edges and that label cost (g <= 0.2), so only the whole-label anchor
+// (2 g - 0.2 > 0.1 for g = 0.15) decides it before the cut; either way the result is the full cut's.
+TEST(Expansion, WholeLabelAnchorMatchesTheFullCut) {
+  for (double g : {0.09, 0.15}) {
+    LabelingProblem p;
+    const int n = 8;
+    p.data_cost.resize(n, 2);
+    for (int v = 0; v < n; ++v) p.data_cost.row(v) << 1.0, (v == 3 || v == 4) ? 1.0 - g : 2.0;
+    for (int v = 0; v + 1 < n; ++v) {
+      p.edges.push_back({v, v + 1});
+      p.edge_weights.push_back(0.1);
+    }
+    p.label_cost = Eigen::Vector2d(0.1, 0.1);
+    std::vector<int> initial(n, 0);
+    initial[3] = initial[4] = 1;
+    ExpansionOptions full;
+    full.reduce = false;
+    const ExpansionSummary a = alpha_expansion(p, initial);
+    const ExpansionSummary b = alpha_expansion(p, initial, full);
+    EXPECT_EQ(a.labels, b.labels) << g;
+    EXPECT_DOUBLE_EQ(a.energy, b.energy) << g;
+    std::vector<int> expected(n, 0);
+    if (g > 0.1) expected = initial;
+    EXPECT_EQ(a.labels, expected) << g;
+  }
 }
 
 TEST(Expansion, DeterministicForASeed) {
