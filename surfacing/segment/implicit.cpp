@@ -150,12 +150,23 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
     const Powers powers(y, degree);
     for (int k = 1; k < t; ++k) columns(i, k - 1) = powers.monomial(k);
   }
-  std::vector<Powers> normal_powers;
-  normal_powers.reserve(nn);
+  // The alignment rows n_v . grad X(y_v) (before the column scaling): kept per vertex for Eq. 6's
+  // form, only their sum for App. B's (no #N x t matrix: regions have up to ~50k such vertices).
+  const bool align = nn > 0 && options.mu > 0.0;
+  const bool per_vertex = options.alignment == NormalAlignment::PerVertex;
+  Eigen::MatrixXd align_rows(align && per_vertex ? nn : 0, u);
+  Eigen::VectorXd align_sum = Eigen::VectorXd::Zero(u);
   for (Eigen::Index i = 0; i < nn; ++i) {
     const Eigen::Vector3d y = normalised(normal_points.row(i).transpose());
     radius2 += y.squaredNorm();
-    normal_powers.emplace_back(y, degree);
+    if (!align) continue;
+    const Powers powers(y, degree);
+    const Eigen::Vector3d n = normals.row(i).transpose();
+    for (int k = 1; k < t; ++k) {
+      const double d = powers.directional(k, n);
+      if (per_vertex) align_rows(i, k - 1) = d;
+      align_sum[k - 1] += d;
+    }
   }
   double radius = std::sqrt(radius2 / static_cast<double>(np + nn));
   if (!(radius > 0.0)) radius = 1.0;
@@ -173,20 +184,16 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
   Eigen::MatrixXd normal_matrix = Eigen::MatrixXd::Zero(u, u);
   normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(columns.transpose());
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(u);
-  if (nn > 0 && options.mu > 0.0) {
-    Eigen::MatrixXd align(nn, u);
-    for (Eigen::Index i = 0; i < nn; ++i) {
-      const Eigen::Vector3d n = normals.row(i).transpose();
-      for (int k = 1; k < t; ++k)
-        align(i, k - 1) = normal_powers[i].directional(k, n) / deviations[k - 1];
-    }
-    rhs = options.mu * align.colwise().sum().transpose();
-    if (options.alignment == NormalAlignment::PerVertex) {
-      normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(align.transpose(), options.mu);
+  if (align) {
+    // Both forms in the normalised basis: each column divided by its deviation.
+    align_sum.array() /= deviations.transpose().array();
+    rhs = options.mu * align_sum;
+    if (per_vertex) {
+      align_rows.array().rowwise() /= deviations.array();
+      normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(align_rows.transpose(), options.mu);
     } else {
       // App. B, Eq. 11-12: one summed row M_align = sum_v n_v^T grad X(v) / S.
-      const Eigen::VectorXd summed = align.colwise().sum().transpose();
-      normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(summed, options.mu);
+      normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(align_sum, options.mu);
     }
   }
   normal_matrix.diagonal().array() += options.lambda;
