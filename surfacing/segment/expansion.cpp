@@ -197,32 +197,43 @@ class Expander {
     // switching all of B (b's vertices) changes E by at least sum_B (D(v, alpha) - D(v, b))
     // - cut(B) - h_b (its boundary edges are the only ones that can stop being cut), so when
     // sum_B (D(v, alpha) - D(v, b) - cut_v) > h_b no minimiser empties b.
-    for (int v = 0; v < n; ++v) {
-      const int b = labels_[v];
-      if (b == alpha) continue;
-      switch_cost_[v] = alpha_cost[v] - current_cost_[v];
-      label_margin_[b] += switch_cost_[v] - cut_[v];
-      if (switch_cost_[v] > weight_sum_[v] + problem_.label_cost[b]) anchored_[b] = 1;
-    }
-    for (int b = 0; b < L; ++b)
-      if (label_margin_[b] > problem_.label_cost[b]) anchored_[b] = 1;
+    // One pass: switch when alpha wins by more than all edges, keep when b wins by more than all
+    // edges and h_b; a vertex between (b wins by less than that, more than its edges) keeps if b
+    // turns out anchored, and is held in pending_ until the pass is over.
+    pending_.clear();
     for (int v = 0; v < n; ++v) {
       const int b = labels_[v];
       if (b == alpha) {
         state_[v] = kSwitch;
         continue;
       }
-      const double diff = switch_cost_[v], slack = weight_sum_[v];
+      const double diff = alpha_cost[v] - current_cost_[v], slack = weight_sum_[v];
+      switch_cost_[v] = diff;
+      label_margin_[b] += diff - cut_[v];
       if (diff < -slack) {
         state_[v] = kSwitch;
         changed_.push_back(v);
-      } else if (diff > slack + (anchored_[b] ? 0.0 : problem_.label_cost[b])) {
+      } else if (diff > slack + problem_.label_cost[b]) {
         state_[v] = kKeep;
+        anchored_[b] = 1;
+      } else if (diff > slack) {
+        state_[v] = kKeep;
+        pending_.push_back(v);
       } else {
         state_[v] = kFree;
         free_.push_back(v);
       }
     }
+    for (int b = 0; b < L; ++b)
+      if (label_margin_[b] > problem_.label_cost[b]) anchored_[b] = 1;
+    const std::size_t decided = free_.size();
+    for (int v : pending_)
+      if (!anchored_[labels_[v]]) {
+        state_[v] = kFree;
+        free_.push_back(v);
+      }
+    std::inplace_merge(free_.begin(), free_.begin() + static_cast<std::ptrdiff_t>(decided),
+                       free_.end());
     add_decided_neighbours();
     stack_.clear();
     for (int v : free_)
@@ -315,7 +326,7 @@ class Expander {
   MaxFlow flow_{0};
   std::vector<unsigned char> state_, anchored_;
   std::vector<double> switch_cost_, keep_cost_, undecided_, label_margin_;
-  std::vector<int> node_of_, aux_of_, changed_, stack_, free_;
+  std::vector<int> node_of_, aux_of_, changed_, stack_, free_, pending_;
 };
 
 }  // namespace
@@ -383,6 +394,11 @@ ExpansionSummary alpha_expansion(const LabelingProblem& problem, std::vector<int
   if (!options.valid(&why)) throw Error::usage("alpha_expansion: invalid options: " + why);
   if (!problem.valid(&why)) throw Error::usage("alpha_expansion: invalid problem: " + why);
   check_labels(problem, initial);
+  if (!options.known_to_fail.empty() &&
+      static_cast<int>(options.known_to_fail.size()) != problem.label_count())
+    throw Error::usage("alpha_expansion: known_to_fail has " +
+                       std::to_string(options.known_to_fail.size()) + " entries for " +
+                       std::to_string(problem.label_count()) + " labels");
 
   Expander expander(problem, std::move(initial), options.reduce);
   ExpansionSummary summary;
@@ -394,6 +410,8 @@ ExpansionSummary alpha_expansion(const LabelingProblem& problem, std::vector<int
   // labeling is also one of the old labeling, which the accepted move already beat. This saves
   // the last, all-rejecting sweep and changes no result.
   std::vector<long> expanded_at(labels, -1);  // accepted_moves when alpha was last expanded
+  for (std::size_t a = 0; a < options.known_to_fail.size(); ++a)
+    if (options.known_to_fail[a]) expanded_at[a] = 0;
   std::mt19937_64 rng(options.seed);
   while (summary.sweeps < options.max_sweeps) {
     // Fisher-Yates with the raw generator output: the same order on every platform.

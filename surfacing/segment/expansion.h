@@ -64,6 +64,9 @@ LabelingEnergy labeling_energy_terms(const LabelingProblem& problem, const std::
 struct ExpansionOptions {
   int max_sweeps = 10;       // full passes over the labels (>= 1)
   std::uint64_t seed = 123;  // order in which labels are expanded (public code: seed 123)
+  std::vector<char> known_to_fail;  // per label (or empty): 1 if its expansion of `initial` is
+                                   // known not to lower E (the caller ran that very move), so it
+                                   // is skipped until a move is accepted (same result)
   bool reduce = true;        // decide what persistency decides before each cut (same labels,
                              // much smaller graphs); false cuts the whole graph (tests' reference)
   bool valid(std::string* why) const;

@@ -258,6 +258,57 @@ TEST(Expansion, WholeLabelAnchorMatchesTheFullCut) {
   }
 }
 
+// Labels marked known_to_fail (PEARL's labels of the previous step, when their moves failed on the
+// same binary problems) are skipped until a move is accepted: marking labels that do fail changes
+// nothing; a wrong-sized mark list is rejected.
+TEST(Expansion, SkipsLabelsKnownToFailWithTheSameResult) {
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 6; ++trial) {
+    const LabelingProblem p = pearl_like_problem(rng, 20, 5);
+    ExpansionOptions options;
+    options.seed = trial;
+    // A converged labeling: every label's expansion from it fails.
+    const ExpansionSummary first = alpha_expansion(p, std::vector<int>(p.vertex_count(), 0), options);
+    ASSERT_TRUE(first.converged);
+    for (int mark = 0; mark < 2; ++mark) {
+      ExpansionOptions marked = options;
+      marked.seed = 50 + trial;
+      marked.known_to_fail.assign(p.label_count(), 0);
+      for (int a = 0; a < p.label_count(); ++a) marked.known_to_fail[a] = mark == 1 || a % 2 == 0;
+      const ExpansionSummary again = alpha_expansion(p, first.labels, marked);
+      EXPECT_EQ(again.labels, first.labels) << trial;
+      EXPECT_EQ(again.accepted_moves, 0) << trial;
+      EXPECT_TRUE(again.converged) << trial;
+    }
+    // From a labeling that is not converged: labels worse than every other label on every vertex
+    // by more than all edge weights (appended copies) fail from any labeling; marking them
+    // changes nothing.
+    LabelingProblem q = p;
+    const int L = p.label_count();
+    q.data_cost.conservativeResize(Eigen::NoChange, 2 * L);
+    q.label_cost.conservativeResize(2 * L);
+    for (int a = 0; a < L; ++a) {
+      q.data_cost.col(L + a) = p.data_cost.col(a).array() + p.data_cost.maxCoeff() + 10.0;
+      q.label_cost[L + a] = p.label_cost[a];
+    }
+    const std::vector<int> start(q.vertex_count(), 0);
+    ExpansionOptions reference = options;
+    reference.seed = 70 + trial;
+    ExpansionOptions marked = reference;
+    marked.known_to_fail.assign(2 * L, 0);
+    for (int a = L; a < 2 * L; ++a) marked.known_to_fail[a] = 1;
+    const ExpansionSummary a = alpha_expansion(q, start, reference);
+    const ExpansionSummary b = alpha_expansion(q, start, marked);
+    EXPECT_GT(a.accepted_moves, 0) << trial;
+    EXPECT_EQ(a.labels, b.labels) << trial;
+    EXPECT_NEAR(a.energy, b.energy, 1e-12) << trial;
+  }
+  const LabelingProblem p = pearl_like_problem(rng, 6, 2);
+  ExpansionOptions bad;
+  bad.known_to_fail.assign(p.label_count() + 1, 0);
+  EXPECT_THROW(alpha_expansion(p, std::vector<int>(p.vertex_count(), 0), bad), Error);
+}
+
 TEST(Expansion, DeterministicForASeed) {
   std::mt19937 rng(11);
   const LabelingProblem p = random_problem(rng, 40, 6, true);
