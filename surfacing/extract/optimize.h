@@ -1,6 +1,7 @@
 #pragma once
 // Final mesh optimisation (paper §4.3, Eq. 7-9, and App. D Eq. 13): move the seamed mesh onto the
-// implicit surfaces of its regions while keeping it regular, with Ceres.
+// implicit surfaces of its regions while keeping it regular (our L-BFGS; Ceres' trust-region
+// solvers for comparison).
 
 #include <ceres/cost_function.h>
 
@@ -51,10 +52,43 @@ namespace sketchsurf {
 /// extract_bench (medians of 3, wall / main-thread CPU, same load): 42.6k cube 10.1 s / 5.0 s,
 /// E 0.0275 -> 7.1 s / 2.8 s, E 0.0182; 11k cube 3.1 s / 1.2 s, E 0.0389 -> 2.4 s / 0.7 s,
 /// E 0.0086; peak RSS 128 MB (was 114 MB); hat scratch process 223 MB (was 193 MB).
+///
+/// Session 3 (extraction alone on cached real segmentations; the 2-core machine shared at load
+/// 3-6, so process CPU and main-thread CPU rather than wall: the main thread runs every serial
+/// part and half of each parallel loop, so its CPU approximates the wall on an idle machine):
+/// - what the iterations chase on real sketches is not only sliding: after 300 iterations the
+///   top 1% of vertices hold 70-87% of E_project (hat, 01-0-1), up to 0.11-0.16 of the diagonal
+///   from their own region's surface (zero sets away from the proxy, seams of surfaces that meet
+///   far off). E_mesh keeps falling ~1% per 10 iterations up to 600 (hat 2.10 at 300, 1.54 at
+///   600) while the stroke distances get no better (hat median 2.50e-3 at 100 iterations, 2.62e-3
+///   at 300, 2.65e-3 at 600; p95 0.0173, 0.0197, 0.0214), so an earlier stop trades E_mesh for
+///   stroke distance (01-0-1 at 200: E 2.07 instead of 1.32, median -6%): the cap stays 300;
+/// - E_mesh at the cap is sensitive to rounding: changes that only reorder sums moved 01-0-1's
+///   between 1.318 and 1.399, its p95 stroke distance by up to 2%;
+/// - tried and dropped: preconditioned gradient steps d = A^-1 grad E (A the global step's
+///   matrix, Armijo) every 20 or 50 L-BFGS iterations (hat E 2.41 / 2.18 instead of 2.10 at 300:
+///   each step gains 1-3% and restarts the memory); 15 or 30 local-global iterations (E 5.04 /
+///   4.74 after them instead of 4.70 after 5, at 2-4x the start's cost); L-BFGS rank 4 or 16
+///   (E 2.19 / 2.01, rank 16 1.4x the time); H0 = (s.y / y.y) I instead of I (hat 2.06, 01-0-1
+///   1.34 at 300, 2.28 / 2.10 at 200); an incomplete-Cholesky preconditioner (see GlobalStep);
+/// - kept: E_project's derivatives from a differentiated table (detail::ModelDerivatives), one
+///   block Jacobi-PCG pass per global step for all coordinates (detail::block_conjugate_gradients),
+///   the Laplacian terms as one scalar matrix acting on the three coordinates, and our own
+///   L-BFGS (optimize.cpp) with the same stopping tests, whose vector work runs on the worker
+///   threads (Ceres' ran serially: 29% of a 01-0-1 extraction's CPU). Before (8f4f7a4) -> after,
+///   same segmentations, two runs each: main-thread CPU hat (69.6k output vertices) 5.4-6.0 s ->
+///   3.0-4.1 s, 01-0-1 (90.3k) 7.5-8.6 -> 4.4-5.4, chair (24.6k) 1.8-1.9 -> 1.2-1.3, teapot
+///   (19.8k) 1.4-1.5 -> 0.9-1.0, box (36.4k) 2.5-3.1 -> 1.6-1.7; process CPU hat 8.9-9.8 ->
+///   5.0-7.1, 01-0-1 12.1-14.3 -> 7.4-9.1. E_mesh hat 2.099 -> 2.043, chair 0.2200 -> 0.2179,
+///   teapot 0.04708 -> 0.04703, box 0.4205 -> 0.4210, 01-0-1 1.367 -> 1.398; median stroke
+///   distance (of the diagonal) hat 2.620e-3 -> 2.617e-3, chair 3.612e-3 -> 3.610e-3, teapot
+///   3.137e-3 -> 3.118e-3, box 1.168e-3 -> 1.158e-3, 01-0-1 3.674e-3 -> 3.677e-3; p95 hat
+///   0.0197 -> 0.0208, chair 0.0190 -> 0.0194, teapot 0.0149 -> 0.0149, box 0.00652 -> 0.00649,
+///   01-0-1 0.0280 -> 0.0282.
 enum class MeshSolver {
   SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
   ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
-  Lbfgs,           ///< line search L-BFGS (paper §4.3)
+  Lbfgs,           ///< line search L-BFGS (paper §4.3; ours, Armijo backtracking, H0 = I)
 };
 
 /// Options of E_mesh = E_project + E_regularize + E_attract (Eq. 7-9, 13).
@@ -77,16 +111,16 @@ struct MeshEnergyOptions {
   double global_step_tolerance = 1e-2;   ///< residual reduction of each global step's conjugate
                                          ///< gradients (ours)
   MeshSolver solver = MeshSolver::Lbfgs;  ///< see MeshSolver
-  int lbfgs_rank = 8;                ///< L-BFGS memory (Ceres max_lbfgs_rank; its default 20 spends
-                                     ///< 40% of the time in the two-loop recursion, measured)
-  int max_iterations = 300;          ///< solver iterations (Ceres max_num_iterations): the stop
+  int lbfgs_rank = 8;                ///< L-BFGS memory (pairs kept; 20, Ceres' default, spent 40%
+                                     ///< of the time in the two-loop recursion, measured)
+  int max_iterations = 300;          ///< solver iterations (L-BFGS or trust-region): the stop
                                      ///< that acts on real sketches, see MeshSolver
-  double function_tolerance = 1e-8;  ///< relative cost change that stops the solver (Ceres)
+  double function_tolerance = 1e-8;  ///< relative cost decrease that stops the solver
   double gradient_tolerance = 1e-6;  ///< largest gradient entry that stops the solver, fraction of
                                      ///< the mesh's diagonal (the energy is in length^2, its
                                      ///< Jacobi-scaled gradient in length: about how far a vertex
                                      ///< still is from its optimum along well-conditioned directions)
-  unsigned threads = 0;              ///< Ceres threads (0 = all); the result does not depend on it
+  unsigned threads = 0;              ///< worker threads (0 = all); the result does not depend on it
   bool valid(std::string* why) const;
 };
 
@@ -113,14 +147,14 @@ struct MeshEnergyTerms {
   double total() const { return project + regularize_2d + regularize_1d + attract + plane; }
 };
 
-/// What optimize_mesh() did (a digest of the Ceres summary).
+/// What optimize_mesh() did (a digest of the solver's summary).
 struct OptimizeSummary {
   MeshEnergyTerms initial, final;
   int iterations = 0;
   int local_global_iterations = 0;  ///< iterations of the local-global start made
-  std::string termination;  ///< Ceres' termination type and message
+  std::string termination;  ///< termination type and message (Ceres' words)
   std::string solver;       ///< minimizer and linear solver used
-  bool usable = false;      ///< Ceres reports a usable solution
+  bool usable = false;      ///< the solver reports a usable solution
   double seconds = 0.0;     ///< wall time of the start (projection, local-global) and the solve
 };
 

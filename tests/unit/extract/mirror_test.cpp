@@ -46,8 +46,9 @@ TEST(ClipToHalfSpace, KeepsTheHalfAndCutsExactlyOnThePlane) {
       EXPECT_TRUE(half.on_plane[v.idx()]);
       EXPECT_NEAR(d, 0.0, 1e-15);
     }
-    if (half.source_vertex[v.idx()] >= 0)
+    if (half.source_vertex[v.idx()] >= 0) {
       EXPECT_EQ(half.mesh.point(v), sphere.point(TriMesh::VertexHandle(half.source_vertex[v.idx()])));
+    }
   }
   EXPECT_GT(boundary, 20u);
   // A cap of the unit sphere at height h = 0.1 / |n| ... compare with the exact cap area 2 pi (1 - h).
