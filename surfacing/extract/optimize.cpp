@@ -429,7 +429,12 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
         projected_residuals_(projected_.rows()),
         product_(3 * n),
         project_values_(energy.project.size()),
-        project_gradients_(energy.project.size()) {}
+        project_gradients_(energy.project.size()),
+        first_term_(static_cast<std::size_t>(n) + 1, 0) {
+    // The projection terms come vertex by vertex (build_energy): where each vertex's start.
+    for (const ProjectionTerm& t : energy.project) ++first_term_[static_cast<std::size_t>(t.vertex) + 1];
+    for (std::size_t v = 0; v < static_cast<std::size_t>(n); ++v) first_term_[v + 1] += first_term_[v];
+  }
 
   int NumParameters() const override { return 3 * n_; }
 
@@ -442,17 +447,19 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
                                                                project_gradients_[i].data());
     });
     double total = 0.0;
-    Eigen::Map<Eigen::VectorXd> G(gradient, gradient ? 3 * n_ : 0);
-    if (gradient) G.setZero();
-    for (std::size_t i = 0; i < energy_.project.size(); ++i) {
-      total += 0.5 * project_values_[i] * project_values_[i];
-      if (gradient) G.segment<3>(3 * energy_.project[i].vertex) += project_values_[i] * project_gradients_[i];
-    }
+    for (std::size_t i = 0; i < energy_.project.size(); ++i) total += 0.5 * project_values_[i] * project_values_[i];
     multiply_rows3(scalar_, x, scalar_residuals_.data(), threads_);
     total += 0.5 * scalar_residuals_.squaredNorm();
+    Eigen::Map<Eigen::VectorXd> G(gradient, gradient ? 3 * n_ : 0);
     if (gradient) {
       multiply_rows3(scalar_transpose_, scalar_residuals_.data(), product_.data(), threads_);
-      G += product_;
+      // Per vertex: its projection terms in order, then the Laplacians' part.
+      parallel_for(0, static_cast<std::size_t>(n_), threads_, [&](std::size_t v) {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (std::size_t i = first_term_[v]; i < first_term_[v + 1]; ++i)
+          sum += project_values_[i] * project_gradients_[i];
+        G.segment<3>(3 * static_cast<Eigen::Index>(v)) = sum + product_.segment<3>(3 * static_cast<Eigen::Index>(v));
+      });
     }
     if (projected_.rows() > 0) {
       projected_residuals_ = projected_ * X;
@@ -521,27 +528,39 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
   mutable Eigen::VectorXd scalar_residuals_, projected_residuals_, product_;
   mutable std::vector<double> project_values_;
   mutable std::vector<Eigen::Vector3d> project_gradients_;
+  std::vector<std::size_t> first_term_;  // projection terms of vertex v: [first_term_[v], first_term_[v + 1])
 };
 
 /// E_mesh in the variables y = x / s (Jacobi scaling: s = 1 / sqrt(Hessian diagonal)).
 class ScaledFunction final : public ceres::FirstOrderFunction {
  public:
-  ScaledFunction(const MeshEnergyFunction& f, Eigen::VectorXd scale)
-      : f_(f), scale_(std::move(scale)), x_(scale_.size()) {}
+  ScaledFunction(const MeshEnergyFunction& f, Eigen::VectorXd scale, unsigned threads)
+      : f_(f), scale_(std::move(scale)), x_(scale_.size()), threads_(threads) {}
   int NumParameters() const override { return f_.NumParameters(); }
   bool Evaluate(const double* y, double* cost, double* gradient) const override {
-    x_ = scale_.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(y, scale_.size()));
+    const Eigen::Index n = scale_.size();
+    constexpr Eigen::Index kChunk = 16384;
+    auto for_chunks = [&](auto&& body) {
+      parallel_for(0, static_cast<std::size_t>((n + kChunk - 1) / kChunk), threads_, [&](std::size_t c) {
+        const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
+        body(lo, std::min(n, lo + kChunk) - lo);
+      });
+    };
+    for_chunks([&](Eigen::Index lo, Eigen::Index size) {
+      x_.segment(lo, size) = scale_.segment(lo, size).cwiseProduct(Eigen::Map<const Eigen::VectorXd>(y + lo, size));
+    });
     if (!f_.Evaluate(x_.data(), cost, gradient)) return false;
-    if (gradient) {
-      Eigen::Map<Eigen::VectorXd> g(gradient, scale_.size());
-      g.array() *= scale_.array();
-    }
+    if (gradient)
+      for_chunks([&](Eigen::Index lo, Eigen::Index size) {
+        Eigen::Map<Eigen::VectorXd>(gradient + lo, size).array() *= scale_.segment(lo, size).array();
+      });
     return true;
   }
  private:
   const MeshEnergyFunction& f_;
   Eigen::VectorXd scale_;
   mutable Eigen::VectorXd x_;  // buffer of the unscaled positions (a 2 MB allocation per call)
+  unsigned threads_;
 };
 
 /// What minimize_lbfgs() did.
@@ -580,7 +599,20 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int 
     for (double p : partial) sum += p;
     return sum;
   };
-  Eigen::Map<Eigen::VectorXd> x(x0, m);
+  // Elementwise work (the same numbers whatever the threads) over the same chunks.
+  auto for_chunks = [&](auto&& body) {
+    parallel_for(0, chunks, threads, [&](std::size_t c) {
+      const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
+      body(lo, std::min(m, lo + kChunk) - lo);
+    });
+  };
+  // The iterate, written back to x0 however the minimisation ends.
+  Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0, m);
+  struct WriteBack {
+    const Eigen::VectorXd& x;
+    double* to;
+    ~WriteBack() { std::copy(x.data(), x.data() + x.size(), to); }
+  } write_back{x, x0};
   Eigen::VectorXd g(m), d(m), trial(m), trial_gradient(m);
   std::vector<Eigen::VectorXd> S(static_cast<std::size_t>(rank), Eigen::VectorXd(m)), Y = S;
   std::vector<double> rho(static_cast<std::size_t>(rank)), alpha(static_cast<std::size_t>(rank));
@@ -595,7 +627,8 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int 
   on_iteration(0);
   auto slot = [&](int age) { return static_cast<std::size_t>((newest - age + rank) % rank); };
   for (int it = 1; it <= max_iterations; ++it) {
-    if (g.cwiseAbs().maxCoeff() <= gradient_tolerance) {
+    for_chunks([&](Eigen::Index lo, Eigen::Index size) { partial[lo / kChunk] = g.segment(lo, size).cwiseAbs().maxCoeff(); });
+    if (*std::max_element(partial.begin(), partial.end()) <= gradient_tolerance) {
       out.converged = true;
       out.termination = "CONVERGENCE: gradient tolerance reached";
       return out;
@@ -639,7 +672,9 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int 
     double step = 1.0, trial_cost = 0.0;
     bool accepted = false;
     for (int search = 0; search < 40 && !accepted; ++search) {
-      trial = x + step * d;
+      for_chunks([&](Eigen::Index lo, Eigen::Index size) {
+        trial.segment(lo, size) = x.segment(lo, size) + step * d.segment(lo, size);
+      });
       const bool finite = f.Evaluate(trial.data(), &trial_cost, trial_gradient.data());
       if (finite && trial_cost <= cost + 1e-4 * step * slope) {
         accepted = true;
@@ -672,8 +707,8 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int 
       stored = rank - 1;  // the oldest pair's slot was overwritten
     }
     const double decrease = cost - trial_cost;
-    x = trial;
-    g = trial_gradient;
+    x.swap(trial);
+    g.swap(trial_gradient);
     const double previous = cost;
     cost = trial_cost;
     out.iterations = it;
@@ -1064,7 +1099,7 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     const Eigen::VectorXd scale = function.hessian_diagonal().cwiseMax(1e-12).cwiseSqrt().cwiseInverse();
     Eigen::Map<Eigen::VectorXd> X(x.data(), 3 * n);
     X.array() /= scale.array();
-    const ScaledFunction scaled(function, scale);
+    const ScaledFunction scaled(function, scale, threads);
     const LbfgsOutcome outcome = minimize_lbfgs(
         scaled, x.data(), options.lbfgs_rank, options.max_iterations, options.function_tolerance,
         options.gradient_tolerance * size, threads, [&](int iteration) {
