@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "surfacing/error.h"
+#include "surfacing/parallel.h"
 #include "surfacing/segment/association.h"
 
 namespace sketchsurf {
@@ -77,7 +78,7 @@ std::vector<std::uint8_t> plane_boundary(const TriMesh& mesh, const std::optiona
 }  // namespace
 
 StrokeDistance stroke_distance(const TriMesh& mesh, const Sketch& sketch, double diagonal,
-                               bool mirrored) {
+                               bool mirrored, unsigned threads) {
   std::vector<Eigen::Vector3d> points;
   for (const Stroke& s : sketch.strokes) {
     if (s.ignored) continue;
@@ -91,11 +92,11 @@ StrokeDistance stroke_distance(const TriMesh& mesh, const Sketch& sketch, double
   if (points.empty()) return out;
   const ClosestFaceTree tree(vertex_matrix(mesh), face_matrix(mesh));
   std::vector<double> d(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  parallel_for(0, points.size(), threads, [&](std::size_t i) {
     Eigen::Vector3d q;
     d[i] = tree.closest_face(points[i], &q) < 0 ? std::numeric_limits<double>::infinity()
                                                 : (q - points[i]).norm() / diagonal;
-  }
+  });
   std::sort(d.begin(), d.end());
   auto quantile = [&](double f) {
     return d[std::min(d.size() - 1, static_cast<std::size_t>(std::floor(f * (d.size() - 1) + 0.5)))];
@@ -192,7 +193,8 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   summary.sharp_vertices = std::count(out.sharp.begin(), out.sharp.end(), 1);
   summary.output_vertices = out.mesh.n_vertices();
   summary.output_faces = out.mesh.n_faces();
-  summary.stroke_distance = stroke_distance(out.mesh, sketch, diagonal, /*mirrored=*/true);
+  summary.stroke_distance = stroke_distance(out.mesh, sketch, diagonal, /*mirrored=*/true,
+                                           options.energy.threads);
   summary.total_s = seconds_since(start);
   progress.update("extract", 1.0);
   return out;

@@ -38,9 +38,10 @@ struct StrokeDistance {
 
 /// Distance from every point of the non-ignored strokes of `sketch` (and their mirror images when
 /// sketch.mirror is set and `mirrored` is true) to `mesh`, as fractions of `diagonal`.
-/// A mesh without faces gives infinite distances.
+/// A mesh without faces gives infinite distances. The points are measured on `threads` threads
+/// (0 = all); the result does not depend on them.
 StrokeDistance stroke_distance(const TriMesh& mesh, const Sketch& sketch, double diagonal,
-                               bool mirrored = false);
+                               bool mirrored = false, unsigned threads = 0);
 
 /// What extract() did.
 struct ExtractSummary {

@@ -51,7 +51,8 @@ std::vector<double> regularization_weights(const LabeledMesh& mesh,
                                            const std::vector<ImplicitModel>& models,
                                            const MeshEnergyOptions& options) {
   std::vector<double> w(mesh.mesh.n_vertices(), 1.0);
-  for (auto v : mesh.mesh.vertices()) {
+  parallel_for(0, mesh.mesh.n_vertices(), resolve_threads(options.threads), [&](std::size_t i) {
+    const TriMesh::VertexHandle v(static_cast<int>(i));
     const auto& labels = mesh.labels[v.idx()];
     if (labels.size() >= 3) {
       w[v.idx()] = 0.0;
@@ -63,7 +64,7 @@ std::vector<double> regularization_weights(const LabeledMesh& mesh,
       const double c = std::min(1.0, std::abs(na.dot(nb)));
       w[v.idx()] = std::isfinite(c) ? seam_weight(std::acos(c), options) : 0.0;
     }
-  }
+  });
   return w;
 }
 
@@ -499,12 +500,12 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
   MeshEnergyTerms terms(const double* x) const {
     MeshEnergyTerms e;
     const Eigen::Map<const Eigen::VectorXd> X(x, 3 * n_);
-    for (const ProjectionTerm& t : energy_.project) {
+    parallel_for(0, energy_.project.size(), threads_, [&](std::size_t i) {
+      const ProjectionTerm& t = energy_.project[i];
       const detail::ProjectionResidual r{&(*energy_.models)[t.model], std::sqrt(t.weight), t.floor};
-      double value = 0.0;
-      r(x + 3 * t.vertex, &value);
-      e.project += value * value;
-    }
+      r(x + 3 * t.vertex, &project_values_[i]);
+    });
+    for (double value : project_values_) e.project += value * value;
     Eigen::VectorXd residuals(3 * scalar_.rows());
     multiply_rows3(scalar_, x, residuals.data(), threads_);
     const Eigen::Index rows_2d = 3 * static_cast<Eigen::Index>(split_.scalar_2d);
@@ -972,10 +973,14 @@ MeshEnergy build_energy(const LabeledMesh& lm, const std::vector<ImplicitModel>&
   for (const ImplicitModel& model : models) energy.derivatives.emplace_back(model);
 
   // E_project (Eq. 8). The gradient floor is relative to each model's typical gradient.
+  std::vector<std::vector<double>> norms(static_cast<std::size_t>(n));
+  parallel_for(0, static_cast<std::size_t>(n), resolve_threads(options.threads), [&](std::size_t v) {
+    const Eigen::Vector3d p = to_eigen(mesh.point(TriMesh::VertexHandle(static_cast<int>(v))));
+    for (int l : lm.labels[v]) norms[v].push_back(models[l].gradient(p).norm());
+  });
   std::vector<std::vector<double>> gradients(models.size());
   for (int v = 0; v < n; ++v)
-    for (int l : lm.labels[v])
-      gradients[l].push_back(models[l].gradient(to_eigen(mesh.point(TriMesh::VertexHandle(v)))).norm());
+    for (std::size_t a = 0; a < lm.labels[v].size(); ++a) gradients[lm.labels[v][a]].push_back(norms[v][a]);
   std::vector<double> floor(models.size(), 0.0);
   for (std::size_t l = 0; l < models.size(); ++l) {
     auto& g = gradients[l];
