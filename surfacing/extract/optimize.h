@@ -75,16 +75,21 @@ namespace sketchsurf {
 ///   block Jacobi-PCG pass per global step for all coordinates (detail::block_conjugate_gradients),
 ///   the Laplacian terms as one scalar matrix acting on the three coordinates, and our own
 ///   L-BFGS (optimize.cpp) with the same stopping tests, whose vector work runs on the worker
-///   threads (Ceres' ran serially: 29% of a 01-0-1 extraction's CPU). Before (8f4f7a4) -> after,
-///   same segmentations, two runs each: main-thread CPU hat (69.6k output vertices) 5.4-6.0 s ->
-///   3.0-4.1 s, 01-0-1 (90.3k) 7.5-8.6 -> 4.4-5.4, chair (24.6k) 1.8-1.9 -> 1.2-1.3, teapot
-///   (19.8k) 1.4-1.5 -> 0.9-1.0, box (36.4k) 2.5-3.1 -> 1.6-1.7; process CPU hat 8.9-9.8 ->
-///   5.0-7.1, 01-0-1 12.1-14.3 -> 7.4-9.1. E_mesh hat 2.099 -> 2.043, chair 0.2200 -> 0.2179,
-///   teapot 0.04708 -> 0.04703, box 0.4205 -> 0.4210, 01-0-1 1.367 -> 1.398; median stroke
-///   distance (of the diagonal) hat 2.620e-3 -> 2.617e-3, chair 3.612e-3 -> 3.610e-3, teapot
-///   3.137e-3 -> 3.118e-3, box 1.168e-3 -> 1.158e-3, 01-0-1 3.674e-3 -> 3.677e-3; p95 hat
-///   0.0197 -> 0.0208, chair 0.0190 -> 0.0194, teapot 0.0149 -> 0.0149, box 0.00652 -> 0.00649,
-///   01-0-1 0.0280 -> 0.0282.
+///   threads (Ceres' ran serially: 29% of a 01-0-1 extraction's CPU), and the per-vertex loops
+///   around it on the threads too. Before (8f4f7a4) -> after, same segmentations, two runs each,
+///   back to back: main-thread CPU hat (69.6k output vertices) 5.5-6.0 s -> 2.5-2.7 s, 01-0-1
+///   (90.3k) 6.8-7.7 -> 3.7, chair (24.6k) 1.8-2.1 -> 1.0, teapot (19.8k) 1.3 -> 0.8-0.9, box
+///   (36.4k) 2.3 -> 1.3-1.4; process CPU hat 8.7-9.7 -> 4.5-4.9, 01-0-1 11.1-12.5 -> 6.6, chair
+///   2.9-3.5 -> 1.8, teapot 2.0-2.1 -> 1.3-1.5, box 3.6 -> 2.3-2.5. E_mesh hat 2.099 -> 2.043,
+///   chair 0.2200 -> 0.2179, teapot 0.04708 -> 0.04703, box 0.4205 -> 0.4210, 01-0-1 1.367 ->
+///   1.398; median stroke distance (of the diagonal) hat 2.620e-3 -> 2.617e-3, chair 3.612e-3 ->
+///   3.610e-3, teapot 3.137e-3 -> 3.118e-3, box 1.168e-3 -> 1.158e-3, 01-0-1 3.674e-3 ->
+///   3.677e-3; p95 hat 0.0197 -> 0.0208, chair 0.0190 -> 0.0194, teapot 0.0149 -> 0.0149, box
+///   0.00652 -> 0.00649, 01-0-1 0.0280 -> 0.0282. extract_bench (same load): 42.6k cube 1.70 s ->
+///   1.44 s wall (Ceres -> ours), E 0.01820 -> 0.01833; 11k cube 0.37 -> 0.53 s (noise), E
+///   0.00863 -> 0.00941 (9% worse: our Armijo search takes other steps than Ceres' Wolfe
+///   search; doubling accepted unit steps while the Wolfe curvature test fails made both cubes
+///   worse, 0.00989 and 0.01849); peak RSS 118 MB.
 enum class MeshSolver {
   SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
   ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
