@@ -89,10 +89,10 @@ namespace sketchsurf {
 ///   1.44 s wall (Ceres -> ours), E 0.01820 -> 0.01833; 11k cube 0.37 -> 0.53 s (noise), E
 ///   0.00863 -> 0.00941 (9% worse: our Armijo search takes other steps than Ceres' Wolfe
 ///   search; doubling accepted unit steps while the Wolfe curvature test fails made both cubes
-///   worse, 0.00989 and 0.01849); peak RSS 118 MB. On the segmentations of the segment room's
-///   7098205 (other regions: far lower E_mesh), before -> after: E_mesh hat 0.18346 -> 0.18379,
-///   chair 0.13627 -> 0.13625, 01-0-1 0.24894 -> 0.25062, teapot 0.067157 -> 0.067129, box
-///   0.36253 -> 0.36299; median stroke distance hat 2.163e-3 -> 2.165e-3, chair 2.708e-3 ->
+///   worse, 0.00989 and 0.01849); peak RSS 118 MB. On the segmentations of the tree at 16:43
+///   (segment room past 7098205: other regions, far lower E_mesh), before -> after: E_mesh hat
+///   0.18346 -> 0.18379, chair 0.13627 -> 0.13625, 01-0-1 0.24894 -> 0.25062, teapot 0.067157
+///   -> 0.067129, box 0.36253 -> 0.36299; median stroke distance hat 2.163e-3 -> 2.165e-3, chair 2.708e-3 ->
 ///   2.701e-3, 01-0-1 2.917e-3 -> 2.949e-3, teapot 2.481e-3 -> 2.473e-3, box 0.950e-3 ->
 ///   0.960e-3; p95 hat 0.01481 -> 0.01458, chair 0.01554 -> 0.01543, 01-0-1 0.01734 -> 0.01730,
 ///   teapot 0.01681 -> 0.01668, box 0.00431 -> 0.00436; extraction wall at load ~3: 01-0-1 7.8 s
