@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "surfacing/error.h"
+#include "surfacing/parallel.h"
 
 namespace sketchsurf {
 
@@ -135,13 +136,23 @@ LabeledMesh insert_seams(const TriMesh& proxy, const std::vector<int>& labels,
   };
 
   // One inserted vertex per edge whose ends have different labels.
+  // Placed in parallel, added in edge order.
+  std::vector<int> crossed;
+  for (auto e : proxy.edges())
+    if (labels[e.v0().idx()] != labels[e.v1().idx()]) crossed.push_back(e.idx());
+  std::vector<Eigen::Vector3d> placed(crossed.size());
+  parallel_for(0, crossed.size(), options.threads, [&](std::size_t i) {
+    const auto e = proxy.edge_handle(crossed[i]);
+    const int a = proxy.from_vertex_handle(proxy.halfedge_handle(e, 0)).idx();
+    const int b = proxy.to_vertex_handle(proxy.halfedge_handle(e, 0)).idx();
+    placed[i] = place_on_edge(points[a], points[b], models_of({labels[a], labels[b]}), options);
+  });
   std::vector<int> edge_vertex(proxy.n_edges(), -1);
-  for (auto e : proxy.edges()) {
-    const int a = e.v0().idx(), b = e.v1().idx();
-    if (labels[a] == labels[b]) continue;
-    const Eigen::Vector3d x =
-        place_on_edge(points[a], points[b], models_of({labels[a], labels[b]}), options);
-    edge_vertex[e.idx()] = add_vertex(x, {labels[a], labels[b]});
+  for (std::size_t i = 0; i < crossed.size(); ++i) {
+    const auto e = proxy.edge_handle(crossed[i]);
+    const int a = proxy.from_vertex_handle(proxy.halfedge_handle(e, 0)).idx();
+    const int b = proxy.to_vertex_handle(proxy.halfedge_handle(e, 0)).idx();
+    edge_vertex[crossed[i]] = add_vertex(placed[i], {labels[a], labels[b]});
   }
 
   std::vector<Eigen::Vector3i> faces;

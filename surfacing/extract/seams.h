@@ -30,6 +30,8 @@ struct SeamOptions {
                               ///< edge (fraction of its length), so no triangle degenerates (ours)
   int samples = 24;           ///< samples along an edge (and per side of a triangle's barycentric
                               ///< grid) when searching where the two surfaces are closest (ours)
+  unsigned threads = 0;       ///< threads placing the vertices (0 = all); the result does not
+                              ///< depend on it
   bool valid(std::string* why) const;
 };
 
