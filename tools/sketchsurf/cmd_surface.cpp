@@ -156,7 +156,9 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     throw Error::input(opt.sketch, e.what());
   }
   if (opt.seed) params.segment.seed = *opt.seed;
-  if (opt.threads) params.segment.threads = params.proxy.threads = params.extract.energy.threads = *opt.threads;
+  if (opt.threads)
+    params.segment.threads = params.proxy.threads = params.extract.energy.threads =
+        params.extract.seams.threads = *opt.threads;
   if (!opt.mirror.empty()) sketch.mirror = parse_mirror(opt.mirror);
   if (!opt.boundary_strokes.empty()) {
     sketch.assign_ids();
