@@ -90,6 +90,38 @@ double ImplicitModel::distance(const Eigen::Vector3d& x) const {
   return f / g;
 }
 
+void implicit_distances(const ImplicitModel& model, Eigen::Ref<const Eigen::MatrixX3d> points,
+                        double* out) {
+  // The same operations, in the same order, as evaluate(), evaluate_gradient() and distance().
+  const Eigen::Index t = std::min<Eigen::Index>(model.coefficients.size(), kMonomials.size());
+  const double* c = model.coefficients.data();
+  for (Eigen::Index p = 0; p < points.rows(); ++p) {
+    const Eigen::Vector3d x = points.row(p);
+    double powers[3][kMaxImplicitDegree + 1];
+    detail::implicit_powers(model, x.data(), powers);
+    double f = 0.0;
+    for (Eigen::Index k = 0; k < t; ++k) {
+      const auto& m = kMonomials[k];
+      f += c[k] * (powers[0][m[0]] * powers[1][m[1]] * powers[2][m[2]]);
+    }
+    f = std::abs(f);
+    if (f == 0.0) {
+      out[p] = 0.0;
+      continue;
+    }
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    for (Eigen::Index k = 1; k < t; ++k) {
+      const auto& m = kMonomials[k];
+      if (m[0] > 0) g[0] += (c[k] * m[0]) * (powers[0][m[0] - 1] * powers[1][m[1]] * powers[2][m[2]]);
+      if (m[1] > 0) g[1] += (c[k] * m[1]) * (powers[0][m[0]] * powers[1][m[1] - 1] * powers[2][m[2]]);
+      if (m[2] > 0) g[2] += (c[k] * m[2]) * (powers[0][m[0]] * powers[1][m[1]] * powers[2][m[2] - 1]);
+    }
+    for (int i = 0; i < 3; ++i) g[i] = g[i] / model.scale;
+    const double norm = g.norm();
+    out[p] = norm == 0.0 ? std::numeric_limits<double>::infinity() : f / norm;
+  }
+}
+
 bool FitOptions::valid(std::string* why) const {
   auto fail = [&](const char* what) {
     if (why) *why = what;

@@ -73,6 +73,13 @@ struct ImplicitModel {
   void evaluate_gradient(const T* x, T* g) const;
 };
 
+/// model.distance(x) for every row x of `points` (#P x 3, world units), bit for bit, with the
+/// powers of each point computed once for f and grad f: segmentation evaluates every candidate
+/// model at every stroke point (chair: a quarter of the segmentation's instructions went to
+/// evaluate + evaluate_gradient). out must hold #P values.
+void implicit_distances(const ImplicitModel& model, Eigen::Ref<const Eigen::MatrixX3d> points,
+                        double* out);
+
 /// How the proxy-normal alignment term of the fit is formed; the paper writes it two ways.
 /// Measured on single fits (tests): per-vertex keeps the function well behaved on noisy planar data
 /// with exact normals (degree 2 on a noisy plane: half the residual), summed recovers curved

@@ -230,10 +230,8 @@ struct Segmenter::Impl {
     auto c = std::make_shared<Candidate>();
     c->fitted_on = std::move(fitted_on);
     c->dist2.resize(graph.points.rows());
-    for (Eigen::Index p = 0; p < graph.points.rows(); ++p) {
-      const double d = model.distance(graph.points.row(p));
-      c->dist2[p] = std::isfinite(d) ? std::min(d * d, kMaxDistance2) : kMaxDistance2;
-    }
+    implicit_distances(model, graph.points, c->dist2.data());
+    for (double& d : c->dist2) d = std::isfinite(d) ? std::min(d * d, kMaxDistance2) : kMaxDistance2;
     c->model = std::move(model);
     return c;
   }

@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "surfacing/error.h"
 
@@ -129,6 +131,43 @@ TEST(Implicit, HandMadeSphereValueGradientDistance) {
     const double taubin = sphere.distance(sphere.center + (2.0 + delta) * dir);
     EXPECT_NEAR(taubin, delta, delta * delta);
   }
+}
+
+// The batch used by segmentation gives distance() bit for bit: random models of every degree,
+// points anywhere, on the zero set (0) and where the gradient vanishes (+infinity).
+TEST(Implicit, BatchDistancesEqualDistanceExactly) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (int degree = 1; degree <= kMaxImplicitDegree; ++degree)
+    for (int trial = 0; trial < 5; ++trial) {
+      ImplicitModel m;
+      m.degree = degree;
+      m.center = Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng));
+      m.scale = 0.5 + uniform(rng) * uniform(rng);
+      m.coefficients.resize(monomial_count(degree));
+      for (Eigen::Index k = 0; k < m.coefficients.size(); ++k) m.coefficients[k] = uniform(rng);
+      Eigen::MatrixX3d points(300, 3);
+      for (Eigen::Index p = 0; p < points.rows(); ++p)
+        points.row(p) << 3 * uniform(rng), 3 * uniform(rng), 3 * uniform(rng);
+      std::vector<double> batch(points.rows());
+      implicit_distances(m, points, batch.data());
+      for (Eigen::Index p = 0; p < points.rows(); ++p)
+        ASSERT_EQ(batch[p], m.distance(points.row(p))) << degree << " " << trial << " " << p;
+    }
+  // f = |y|^2 - 1 (a sphere of radius 2 around c): 0 on it, infinity at c (grad f = 0, f = -1).
+  ImplicitModel sphere;
+  sphere.degree = 2;
+  sphere.center = Eigen::Vector3d(1, -2, 0.5);
+  sphere.scale = 2.0;
+  sphere.coefficients = Eigen::VectorXd::Zero(10);
+  sphere.coefficients << -1, 0, 0, 0, 1, 0, 0, 1, 0, 1;
+  Eigen::MatrixX3d special(2, 3);
+  special.row(0) = sphere.center + Eigen::Vector3d(2, 0, 0);
+  special.row(1) = sphere.center;
+  double d[2];
+  implicit_distances(sphere, special, d);
+  EXPECT_EQ(d[0], 0.0);
+  EXPECT_EQ(d[1], std::numeric_limits<double>::infinity());
 }
 
 TEST(Implicit, EvaluateWithCeresJetMatchesDoubles) {
