@@ -25,7 +25,8 @@
 //   1694 without the whole-label anchor; 11-2-2: 590, 625 without).
 // - Throws sketchsurf::Error (Usage) for inconsistent shapes (data_cost rows != labels' size, edge
 //   out of range or a self-loop, weights/label costs negative or not finite, non-finite data costs,
-//   an initial label out of range) and invalid options.
+//   an initial label out of range, known_to_fail neither empty nor one entry per label) and
+//   invalid options.
 
 #include <Eigen/Core>
 
