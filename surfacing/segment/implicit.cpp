@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "surfacing/error.h"
@@ -90,35 +91,65 @@ double ImplicitModel::distance(const Eigen::Vector3d& x) const {
   return f / g;
 }
 
-void implicit_distances(const ImplicitModel& model, Eigen::Ref<const Eigen::MatrixX3d> points,
-                        double* out) {
-  // The same operations, in the same order, as evaluate(), evaluate_gradient() and distance().
-  const Eigen::Index t = std::min<Eigen::Index>(model.coefficients.size(), kMonomials.size());
+namespace {
+
+// implicit_distances for a model of T monomials, the loops over the monomials unrolled with
+// compile-time exponents; `t` the generic count (T = 0).
+template <int T>
+void distances_for(const ImplicitModel& model, Eigen::Ref<const Eigen::MatrixX3d> points,
+                   double* out, Eigen::Index t) {
   const double* c = model.coefficients.data();
   for (Eigen::Index p = 0; p < points.rows(); ++p) {
     const Eigen::Vector3d x = points.row(p);
     double powers[3][kMaxImplicitDegree + 1];
     detail::implicit_powers(model, x.data(), powers);
     double f = 0.0;
-    for (Eigen::Index k = 0; k < t; ++k) {
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    auto value_term = [&](int k) {
       const auto& m = kMonomials[k];
       f += c[k] * (powers[0][m[0]] * powers[1][m[1]] * powers[2][m[2]]);
+    };
+    auto gradient_term = [&](int k) {
+      const auto& m = kMonomials[k];
+      if (m[0] > 0) g[0] += (c[k] * m[0]) * (powers[0][m[0] - 1] * powers[1][m[1]] * powers[2][m[2]]);
+      if (m[1] > 0) g[1] += (c[k] * m[1]) * (powers[0][m[0]] * powers[1][m[1] - 1] * powers[2][m[2]]);
+      if (m[2] > 0) g[2] += (c[k] * m[2]) * (powers[0][m[0]] * powers[1][m[1]] * powers[2][m[2] - 1]);
+    };
+    if constexpr (T > 0) {
+      [&]<std::size_t... K>(std::index_sequence<K...>) { (value_term(K), ...); }(
+          std::make_index_sequence<T>{});
+    } else {
+      for (Eigen::Index k = 0; k < t; ++k) value_term(static_cast<int>(k));
     }
     f = std::abs(f);
     if (f == 0.0) {
       out[p] = 0.0;
       continue;
     }
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    for (Eigen::Index k = 1; k < t; ++k) {
-      const auto& m = kMonomials[k];
-      if (m[0] > 0) g[0] += (c[k] * m[0]) * (powers[0][m[0] - 1] * powers[1][m[1]] * powers[2][m[2]]);
-      if (m[1] > 0) g[1] += (c[k] * m[1]) * (powers[0][m[0]] * powers[1][m[1] - 1] * powers[2][m[2]]);
-      if (m[2] > 0) g[2] += (c[k] * m[2]) * (powers[0][m[0]] * powers[1][m[1]] * powers[2][m[2] - 1]);
+    if constexpr (T > 0) {
+      [&]<std::size_t... K>(std::index_sequence<K...>) { (gradient_term(K + 1), ...); }(
+          std::make_index_sequence<T - 1>{});
+    } else {
+      for (Eigen::Index k = 1; k < t; ++k) gradient_term(static_cast<int>(k));
     }
     for (int i = 0; i < 3; ++i) g[i] = g[i] / model.scale;
     const double norm = g.norm();
     out[p] = norm == 0.0 ? std::numeric_limits<double>::infinity() : f / norm;
+  }
+}
+
+}  // namespace
+
+void implicit_distances(const ImplicitModel& model, Eigen::Ref<const Eigen::MatrixX3d> points,
+                        double* out) {
+  // The same operations, in the same order, as evaluate(), evaluate_gradient() and distance().
+  const Eigen::Index t = std::min<Eigen::Index>(model.coefficients.size(), kMonomials.size());
+  switch (t) {
+    case 4: return distances_for<4>(model, points, out, t);
+    case 10: return distances_for<10>(model, points, out, t);
+    case 20: return distances_for<20>(model, points, out, t);
+    case 35: return distances_for<35>(model, points, out, t);
+    default: return distances_for<0>(model, points, out, t);
   }
 }
 
