@@ -14,6 +14,7 @@
 #include "surfacing/segment/expansion.h"
 #include "surfacing/segment/implicit.h"
 #include "surfacing/segment/spectral.h"
+#include "tests/support/shapes.h"
 
 namespace sketchsurf {
 namespace {
@@ -54,13 +55,7 @@ GridGraph grid_graph(int side, int regions) {
     g.edges.push_back({a, b});
     g.weights.push_back(g.region[a] == g.region[b] ? 100.0 : 1.0);
   };
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x) {
-      const int v = y * side + x;
-      if (x + 1 < side) add(v, v + 1);
-      if (y + 1 < side) add(v, v + side);
-      if (x + 1 < side && y + 1 < side) add(v, v + side + 1);
-    }
+  for (const auto& [u, v] : testing::triangulated_grid_edges(side)) add(u, v);
   return g;
 }
 

@@ -258,4 +258,16 @@ double box_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& half) {
   return outside > 0.0 ? outside : -q.maxCoeff();
 }
 
+std::vector<std::array<int, 2>> triangulated_grid_edges(int side) {
+  std::vector<std::array<int, 2>> edges;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      const int v = y * side + x;
+      if (x + 1 < side) edges.push_back({v, v + 1});
+      if (y + 1 < side) edges.push_back({v, v + side});
+      if (x + 1 < side && y + 1 < side) edges.push_back({v, v + side + 1});
+    }
+  return edges;
+}
+
 }  // namespace sketchsurf::testing

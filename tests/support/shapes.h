@@ -2,7 +2,9 @@
 // Sketches and meshes with known answers, generated for the tests (and the bundled examples).
 // Every generator is deterministic; noise takes an explicit seed.
 
+#include <array>
 #include <functional>
+#include <vector>
 
 #include "surfacing/mesh.h"
 #include "surfacing/sketch/sketch.h"
@@ -52,5 +54,9 @@ TriMesh torus_mesh(int n_major, int n_minor, double major, double minor);
 
 /// Distance from p to the surface of the axis-aligned box with half extents `half` at the origin.
 double box_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& half);
+
+/// Edges of a side x side grid of vertices (v = y * side + x), each cell split by its diagonal:
+/// right, up and up-right neighbours, in row-major order.
+std::vector<std::array<int, 2>> triangulated_grid_edges(int side);
 
 }  // namespace sketchsurf::testing

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "surfacing/error.h"
+#include "tests/support/shapes.h"
 
 namespace sketchsurf {
 namespace {
@@ -192,13 +193,7 @@ LabelingProblem pearl_like_problem(std::mt19937& rng, int side, int cells) {
     p.edges.push_back({u, v});
     p.edge_weights.push_back((cell[u] == cell[v] ? 0.05 : 0.005) * (0.5 + uniform(rng)));
   };
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x) {
-      const int v = y * side + x;
-      if (x + 1 < side) add(v, v + 1);
-      if (y + 1 < side) add(v, v + side);
-      if (x + 1 < side && y + 1 < side) add(v, v + side + 1);
-    }
+  for (const auto& [u, v] : testing::triangulated_grid_edges(side)) add(u, v);
   p.label_cost.resize(labels);
   for (int a = 0; a < labels; ++a) p.label_cost[a] = 0.05 + 0.3 * uniform(rng);
   return p;

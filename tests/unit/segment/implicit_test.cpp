@@ -102,14 +102,19 @@ TEST(Implicit, MonomialCountAndOrder) {
       EXPECT_EQ(table[k][0] + table[k][1] + table[k][2] <= d, k < monomial_count(d));
 }
 
-TEST(Implicit, HandMadeSphereValueGradientDistance) {
-  // f = |y|^2 - 1 with y = (x - c) / 2: a sphere of radius 2 around c.
+// f = |y|^2 - 1 with y = (x - c) / 2: a sphere of radius 2 around c = (1, -2, 0.5).
+ImplicitModel radius_two_sphere() {
   ImplicitModel sphere;
   sphere.degree = 2;
   sphere.center = Eigen::Vector3d(1, -2, 0.5);
   sphere.scale = 2.0;
   sphere.coefficients = Eigen::VectorXd::Zero(10);
   sphere.coefficients << -1, 0, 0, 0, 1, 0, 0, 1, 0, 1;
+  return sphere;
+}
+
+TEST(Implicit, HandMadeSphereValueGradientDistance) {
+  const ImplicitModel sphere = radius_two_sphere();
   EXPECT_EQ(sphere.dimension(), 10);
   EXPECT_TRUE(sphere.valid(nullptr));
   // With a degree field that is too low the model still evaluates all its coefficients (no
@@ -155,12 +160,7 @@ TEST(Implicit, BatchDistancesEqualDistanceExactly) {
         ASSERT_EQ(batch[p], m.distance(points.row(p))) << degree << " " << trial << " " << p;
     }
   // f = |y|^2 - 1 (a sphere of radius 2 around c): 0 on it, infinity at c (grad f = 0, f = -1).
-  ImplicitModel sphere;
-  sphere.degree = 2;
-  sphere.center = Eigen::Vector3d(1, -2, 0.5);
-  sphere.scale = 2.0;
-  sphere.coefficients = Eigen::VectorXd::Zero(10);
-  sphere.coefficients << -1, 0, 0, 0, 1, 0, 0, 1, 0, 1;
+  const ImplicitModel sphere = radius_two_sphere();
   Eigen::MatrixX3d special(2, 3);
   special.row(0) = sphere.center + Eigen::Vector3d(2, 0, 0);
   special.row(1) = sphere.center;
