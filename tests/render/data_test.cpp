@@ -28,7 +28,7 @@ TEST(RenderData, EveryRealSketchRenders) {
     const auto image = renderer.render(render::fit_camera(scene.bounds, render::View::Iso, 1.0));
     EXPECT_GT(non_background_pixels(image, render::kBackground), 50u);
     for (int i = 0; i < 96; ++i)
-      for (const auto [x, y] : {std::pair{i, 0}, {i, 95}, {0, i}, {95, i}})
+      for (const auto& [x, y] : {std::pair{i, 0}, {i, 95}, {0, i}, {95, i}})
         ASSERT_EQ(image.at(x, y), (std::array<std::uint8_t, 4>{255, 255, 255, 255}))
             << "stroke cut by the frame at " << x << "," << y;
   }

@@ -35,7 +35,9 @@ TEST(SimplifyGraph, KeepsStrokeVerticesAndCrossedEdges) {
   std::set<std::pair<int, int>> edges;
   for (const auto& e : f.coarse.edges) edges.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
   for (int v = 0; v < f.graph.vertex_count(); ++v)
-    if (!f.graph.points_of(v).empty()) EXPECT_EQ(f.coarse.coarse_to_fine[f.coarse.fine_to_coarse[v]], v);
+    if (!f.graph.points_of(v).empty()) {
+      EXPECT_EQ(f.coarse.coarse_to_fine[f.coarse.fine_to_coarse[v]], v);
+    }
   for (std::size_t e = 0; e < f.graph.edges.size(); ++e) {
     if (!f.graph.crossed[e]) continue;
     const int a = f.coarse.fine_to_coarse[f.graph.edges[e][0]];
