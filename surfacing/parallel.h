@@ -3,6 +3,7 @@
 // index writes only its own output.
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <thread>
@@ -40,6 +41,40 @@ void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn)
   };
   for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run_chunk, w);
   run_chunk(0);
+  for (auto& t : pool) t.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+/// Calls fn(c, lo, hi) for the fixed chunks c of [0, n), each [lo, hi) of `chunk` indices (the
+/// last one shorter), on up to `threads` threads. The chunks do not depend on the thread count:
+/// sums kept per chunk and added in chunk order are the same whatever the threads.
+template <class Fn>
+void parallel_chunks(std::size_t n, std::size_t chunk, unsigned threads, Fn&& fn) {
+  parallel_for(0, (n + chunk - 1) / chunk, threads,
+               [&](std::size_t c) { fn(c, c * chunk, std::min(n, (c + 1) * chunk)); });
+}
+
+/// Calls fn(i) for every i in [0, n) on up to `threads` threads (0 = all), each thread taking the
+/// next index when it is free, the calling thread one of them: for few calls of uneven length.
+/// The first exception thrown is rethrown on the calling thread once every thread has stopped;
+/// the others stop after their current index.
+template <class Fn>
+void parallel_dynamic(std::size_t n, unsigned threads, Fn&& fn) {
+  const std::size_t workers = std::min<std::size_t>(resolve_threads(threads), n);
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> errors(std::max<std::size_t>(workers, 1));
+  auto work = [&](std::size_t w) {
+    try {
+      for (std::size_t i; (i = next++) < n;) fn(i);
+    } catch (...) {
+      errors[w] = std::current_exception();
+      next = n;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, w);
+  work(0);
   for (auto& t : pool) t.join();
   for (auto& e : errors)
     if (e) std::rethrow_exception(e);

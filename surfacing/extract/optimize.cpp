@@ -215,19 +215,14 @@ template <int K>
 std::vector<double> block_conjugate_gradients(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A, const Eigen::VectorXd& inverse_diagonal,
                                               const std::vector<double>& B, double tolerance,
                                               unsigned threads) {
-  constexpr Eigen::Index kChunk = 2048;
+  constexpr std::size_t kChunk = 2048;
   const Eigen::Index n = A.rows();
-  const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
+  const std::size_t chunks = (static_cast<std::size_t>(n) + kChunk - 1) / kChunk;
   const std::size_t size = static_cast<std::size_t>(n) * K;
   std::vector<double> X(size, 0.0), R = B, Z(size), P(size), Q(size);
   using Sums = std::array<double, K>;
-  std::vector<Sums> first(static_cast<std::size_t>(chunks)), second(static_cast<std::size_t>(chunks));
-  auto for_chunks = [&](auto&& body) {
-    parallel_for(0, static_cast<std::size_t>(chunks), threads, [&](std::size_t c) {
-      const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
-      body(c, lo, std::min(n, lo + kChunk));
-    });
-  };
+  std::vector<Sums> first(chunks), second(chunks);
+  auto for_chunks = [&](auto&& body) { parallel_chunks(static_cast<std::size_t>(n), kChunk, threads, body); };
   auto total = [&](const std::vector<Sums>& partial) {
     Sums sum{};
     for (const Sums& p : partial)
@@ -348,6 +343,13 @@ struct MeshEnergy {
 
 using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
+/// Coefficient j of a Laplacian term's row (weight w, vertex then its k neighbours): sqrt(w) for
+/// the vertex, -sqrt(w) / k for each neighbour.
+double laplacian_coefficient(const LaplacianTerm& term, std::size_t j) {
+  const double s = std::sqrt(term.weight);
+  return j == 0 ? s : -s / static_cast<double>(term.vertices.size() - 1);
+}
+
 /// The Laplacian terms with a projection (mirror-plane vertices) as one sparse matrix L (3 rows
 /// per term, 3 columns per vertex), so that their energy is |L x|^2 and its gradient 2 L^T L x:
 /// the "precomputed gradient matrices for the quadratic terms" of §4.3.
@@ -355,10 +357,8 @@ RowMatrix laplacian_matrix(const std::vector<const LaplacianTerm*>& terms, int n
   std::vector<Eigen::Triplet<double>> entries;
   for (std::size_t t = 0; t < terms.size(); ++t) {
     const auto& term = *terms[t];
-    const double s = std::sqrt(term.weight);
-    const double k = static_cast<double>(term.vertices.size() - 1);
     for (std::size_t j = 0; j < term.vertices.size(); ++j) {
-      const double c = j == 0 ? s : -s / k;
+      const double c = laplacian_coefficient(term, j);
       for (int r = 0; r < 3; ++r)
         for (int q = 0; q < 3; ++q)
           if (term.projection(r, q) != 0.0)
@@ -377,10 +377,8 @@ RowMatrix scalar_laplacian_matrix(const std::vector<const LaplacianTerm*>& terms
   std::vector<Eigen::Triplet<double>> entries;
   for (std::size_t t = 0; t < terms.size(); ++t) {
     const auto& term = *terms[t];
-    const double s = std::sqrt(term.weight);
-    const double k = static_cast<double>(term.vertices.size() - 1);
     for (std::size_t j = 0; j < term.vertices.size(); ++j)
-      entries.emplace_back(static_cast<int>(t), term.vertices[j], j == 0 ? s : -s / k);
+      entries.emplace_back(static_cast<int>(t), term.vertices[j], laplacian_coefficient(term, j));
   }
   RowMatrix S(static_cast<Eigen::Index>(terms.size()), n);
   S.setFromTriplets(entries.begin(), entries.end());
@@ -532,6 +530,16 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
   std::vector<std::size_t> first_term_;  // projection terms of vertex v: [first_term_[v], first_term_[v + 1])
 };
 
+/// Chunk length of the L-BFGS vector work: fixed, so its sums do not depend on the thread count.
+constexpr std::size_t kVectorChunk = 16384;
+
+/// body(lo, size) over the kVectorChunk-long chunks of [0, n), on `threads` threads.
+template <class Body>
+void for_vector_chunks(Eigen::Index n, unsigned threads, Body&& body) {
+  parallel_chunks(static_cast<std::size_t>(n), kVectorChunk, threads,
+                  [&](std::size_t, Eigen::Index lo, Eigen::Index hi) { body(lo, hi - lo); });
+}
+
 /// E_mesh in the variables y = x / s (Jacobi scaling: s = 1 / sqrt(Hessian diagonal)).
 class ScaledFunction final : public ceres::FirstOrderFunction {
  public:
@@ -539,20 +547,12 @@ class ScaledFunction final : public ceres::FirstOrderFunction {
       : f_(f), scale_(std::move(scale)), x_(scale_.size()), threads_(threads) {}
   int NumParameters() const override { return f_.NumParameters(); }
   bool Evaluate(const double* y, double* cost, double* gradient) const override {
-    const Eigen::Index n = scale_.size();
-    constexpr Eigen::Index kChunk = 16384;
-    auto for_chunks = [&](auto&& body) {
-      parallel_for(0, static_cast<std::size_t>((n + kChunk - 1) / kChunk), threads_, [&](std::size_t c) {
-        const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
-        body(lo, std::min(n, lo + kChunk) - lo);
-      });
-    };
-    for_chunks([&](Eigen::Index lo, Eigen::Index size) {
+    for_vector_chunks(scale_.size(), threads_, [&](Eigen::Index lo, Eigen::Index size) {
       x_.segment(lo, size) = scale_.segment(lo, size).cwiseProduct(Eigen::Map<const Eigen::VectorXd>(y + lo, size));
     });
     if (!f_.Evaluate(x_.data(), cost, gradient)) return false;
     if (gradient)
-      for_chunks([&](Eigen::Index lo, Eigen::Index size) {
+      for_vector_chunks(scale_.size(), threads_, [&](Eigen::Index lo, Eigen::Index size) {
         Eigen::Map<Eigen::VectorXd>(gradient + lo, size).array() *= scale_.segment(lo, size).array();
       });
     return true;
@@ -587,26 +587,18 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int 
                             double function_tolerance, double gradient_tolerance, unsigned threads,
                             Callback&& on_iteration) {
   const Eigen::Index m = f.NumParameters();
-  constexpr Eigen::Index kChunk = 16384;
-  const std::size_t chunks = static_cast<std::size_t>((m + kChunk - 1) / kChunk);
+  const std::size_t chunks = (static_cast<std::size_t>(m) + kVectorChunk - 1) / kVectorChunk;
   std::vector<double> partial(chunks);
   // sum over chunks of body(lo, hi), each chunk on one thread, added in chunk order.
   auto reduce = [&](auto&& body) {
-    parallel_for(0, chunks, threads, [&](std::size_t c) {
-      const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
-      partial[c] = body(lo, std::min(m, lo + kChunk));
-    });
+    parallel_chunks(static_cast<std::size_t>(m), kVectorChunk, threads,
+                    [&](std::size_t c, Eigen::Index lo, Eigen::Index hi) { partial[c] = body(lo, hi); });
     double sum = 0.0;
     for (double p : partial) sum += p;
     return sum;
   };
   // Elementwise work (the same numbers whatever the threads) over the same chunks.
-  auto for_chunks = [&](auto&& body) {
-    parallel_for(0, chunks, threads, [&](std::size_t c) {
-      const Eigen::Index lo = static_cast<Eigen::Index>(c) * kChunk;
-      body(lo, std::min(m, lo + kChunk) - lo);
-    });
-  };
+  auto for_chunks = [&](auto&& body) { for_vector_chunks(m, threads, body); };
   // The iterate, written back to x0 however the minimisation ends.
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0, m);
   struct WriteBack {
@@ -628,7 +620,7 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int 
   on_iteration(0);
   auto slot = [&](int age) { return static_cast<std::size_t>((newest - age + rank) % rank); };
   for (int it = 1; it <= max_iterations; ++it) {
-    for_chunks([&](Eigen::Index lo, Eigen::Index size) { partial[lo / kChunk] = g.segment(lo, size).cwiseAbs().maxCoeff(); });
+    for_chunks([&](Eigen::Index lo, Eigen::Index size) { partial[static_cast<std::size_t>(lo) / kVectorChunk] = g.segment(lo, size).cwiseAbs().maxCoeff(); });
     if (*std::max_element(partial.begin(), partial.end()) <= gradient_tolerance) {
       out.converged = true;
       out.termination = "CONVERGENCE: gradient tolerance reached";
@@ -910,10 +902,8 @@ class GlobalStep {
       const LaplacianTerm& term = terms[t];
       // The projection is I or I - n n^T: its (c, c) entry in the frame is 1 or 0.
       if ((frame_ * term.projection * frame_.transpose())(c, c) < 0.5) continue;
-      const double s = std::sqrt(term.weight);
-      const double k = static_cast<double>(term.vertices.size() - 1);
       for (std::size_t j = 0; j < term.vertices.size(); ++j)
-        entries.emplace_back(static_cast<int>(t), term.vertices[j], j == 0 ? s : -s / k);
+        entries.emplace_back(static_cast<int>(t), term.vertices[j], laplacian_coefficient(term, j));
     }
     Eigen::SparseMatrix<double> L(static_cast<int>(terms.size()), n_);
     L.setFromTriplets(entries.begin(), entries.end());

@@ -4,7 +4,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <map>
 #include <optional>
 #include <random>
@@ -110,30 +109,6 @@ struct RunResult {
   bool converged = false;
   std::vector<double> history;
 };
-
-// Calls fn(i) for every i in [0, n) on up to `threads` threads (0 = all), each thread taking the
-// next index when it is free, the calling thread one of them. The first exception thrown is
-// rethrown on the calling thread once every thread has stopped.
-template <class Fn>
-void parallel_dynamic(std::size_t n, unsigned threads, Fn&& fn) {
-  const std::size_t workers = std::min<std::size_t>(resolve_threads(threads), n);
-  std::atomic<std::size_t> next{0};
-  std::vector<std::exception_ptr> errors(std::max<std::size_t>(workers, 1));
-  auto work = [&](std::size_t w) {
-    try {
-      for (std::size_t i; (i = next++) < n;) fn(i);
-    } catch (...) {
-      errors[w] = std::current_exception();
-      next = n;  // the others stop after their current index
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (auto& t : pool) t.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
-}
 
 // Progress of the PEARL runs, reported after every iteration of any run but only from the calling
 // thread (callbacks need not be thread-safe). PEARL's iteration count is not known in advance (5-12
