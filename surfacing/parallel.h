@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -17,8 +18,25 @@ inline unsigned resolve_threads(unsigned threads) {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+/// The exception a parallel loop rethrows: the first one thrown, in time. A call that fails
+/// because another one did (a run cancelled when a sibling run failed) must not hide the cause.
+class FirstError {
+ public:
+  void keep(std::exception_ptr e) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!first_) first_ = std::move(e);
+  }
+  void rethrow() const {
+    if (first_) std::rethrow_exception(first_);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::exception_ptr first_;
+};
+
 /// Calls fn(i) for every i in [begin, end) on up to `threads` threads (0 = all), in contiguous
-/// chunks. The first exception thrown by any call is rethrown on the calling thread.
+/// chunks. The first exception thrown by any call (FirstError) is rethrown on the calling thread.
 template <class Fn>
 void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn) {
   if (end <= begin) return;
@@ -28,7 +46,7 @@ void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn)
     for (std::size_t i = begin; i < end; ++i) fn(i);
     return;
   }
-  std::vector<std::exception_ptr> errors(workers);
+  FirstError error;
   std::vector<std::thread> pool;
   pool.reserve(workers - 1);
   auto run_chunk = [&](std::size_t w) {
@@ -36,14 +54,13 @@ void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn)
     try {
       for (std::size_t i = lo; i < hi; ++i) fn(i);
     } catch (...) {
-      errors[w] = std::current_exception();
+      error.keep(std::current_exception());
     }
   };
   for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run_chunk, w);
   run_chunk(0);
   for (auto& t : pool) t.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  error.rethrow();
 }
 
 /// Calls fn(c, lo, hi) for the fixed chunks c of [0, n), each [lo, hi) of `chunk` indices (the
@@ -63,21 +80,20 @@ template <class Fn>
 void parallel_dynamic(std::size_t n, unsigned threads, Fn&& fn) {
   const std::size_t workers = std::min<std::size_t>(resolve_threads(threads), n);
   std::atomic<std::size_t> next{0};
-  std::vector<std::exception_ptr> errors(std::max<std::size_t>(workers, 1));
-  auto work = [&](std::size_t w) {
+  FirstError error;
+  auto work = [&] {
     try {
       for (std::size_t i; (i = next++) < n;) fn(i);
     } catch (...) {
-      errors[w] = std::current_exception();
+      error.keep(std::current_exception());
       next = n;
     }
   };
   std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
   for (auto& t : pool) t.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  error.rethrow();
 }
 
 }  // namespace sketchsurf

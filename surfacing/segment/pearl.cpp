@@ -346,7 +346,7 @@ struct Segmenter::Impl {
     const auto members = coarse_members(s.labels, used);
     for (int a = 0; a < used; ++a) {
       const int d = s.models[a]->model.degree;
-      const int lowest = options.all_lower_degrees ? 1 : d - 1;
+      const int lowest = options.all_lower_degrees ? 1 : std::max(1, d - 1);
       for (int lower = d - 1; lower >= lowest; --lower)
         if (CandidatePtr c = fit_region(members[a], lower, cache)) s.models.push_back(std::move(c));
     }

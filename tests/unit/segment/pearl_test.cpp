@@ -52,6 +52,17 @@ TEST(SegmentOptions, RejectsInvalidValues) {
   EXPECT_THROW(segment(testing::cube_sketch(), cube_proxy(), bad), Error);
 }
 
+TEST(Pearl, TheNextLowerDegreeLadderStopsAtPlanes) {
+  // all_lower_degrees off (§4.2's d - 1 proposals): the cube's faces come down to planes, whose
+  // regions must not ask for a degree-0 fit (that threw, and was reported as "cancelled").
+  SegmentOptions o = small_options();
+  o.all_lower_degrees = false;
+  const Segmentation s = segment(testing::cube_sketch(1.0), cube_proxy(), o);
+  EXPECT_GE(s.models.size(), 6u);
+  EXPECT_TRUE(std::any_of(s.models.begin(), s.models.end(),
+                          [](const ImplicitModel& m) { return m.degree == 1; }));
+}
+
 TEST(Pearl, DeterministicWhateverTheThreadCount) {
   const Sketch sketch = testing::cube_sketch(1.0);
   const TriMesh proxy = cube_proxy();

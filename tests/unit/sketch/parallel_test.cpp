@@ -1,0 +1,69 @@
+// surfacing/parallel.h: the loops' results do not depend on the thread count, and a failure is
+// reported by its cause, not by the runs it cancelled.
+#include "surfacing/parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace sketchsurf {
+namespace {
+
+using namespace std::chrono_literals;
+
+// fn(i) for a loop of n calls: call `cause` throws "cause"; every other call waits until it has
+// (up to 10 s), then a little longer, and throws "cancelled", as a sibling run stopped by the
+// failure would.
+struct FailingRuns {
+  std::size_t cause;
+  std::atomic<bool> failed{false};
+  void operator()(std::size_t i) {
+    if (i == cause) {
+      failed = true;
+      throw std::runtime_error("cause");
+    }
+    for (int k = 0; k < 1000 && !failed; ++k) std::this_thread::sleep_for(10ms);
+    std::this_thread::sleep_for(50ms);
+    throw std::runtime_error("cancelled");
+  }
+};
+
+std::string message_of(const auto& loop) {
+  try {
+    loop();
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "nothing thrown";
+}
+
+TEST(ParallelLoops, EveryIndexOnceWhateverTheThreadCount) {
+  for (unsigned threads : {1u, 2u, 3u, 8u}) {
+    std::vector<int> hits(101, 0);
+    parallel_for(0, hits.size(), threads, [&](std::size_t i) { ++hits[i]; });
+    EXPECT_EQ(std::vector<int>(101, 1), hits) << threads << " threads";
+    std::vector<int> dynamic_hits(7, 0);
+    parallel_dynamic(dynamic_hits.size(), threads, [&](std::size_t i) { ++dynamic_hits[i]; });
+    EXPECT_EQ(std::vector<int>(7, 1), dynamic_hits) << threads << " threads";
+  }
+}
+
+TEST(ParallelLoops, RethrowTheFirstFailureNotTheRunsItCancelled) {
+  // The failing call is on the second thread's share in both loops: the calling thread's own
+  // (later) "cancelled" must not hide it.
+  for (std::size_t cause : {1u, 0u}) {
+    FailingRuns dynamic_runs{cause};
+    EXPECT_EQ("cause", message_of([&] { parallel_dynamic(2, 2, std::ref(dynamic_runs)); }))
+        << "parallel_dynamic, cause " << cause;
+  }
+  FailingRuns chunks{1};
+  EXPECT_EQ("cause", message_of([&] { parallel_for(0, 2, 2, std::ref(chunks)); }));
+}
+
+}  // namespace
+}  // namespace sketchsurf
