@@ -8,7 +8,9 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <sstream>
 #include <type_traits>
+#include <utility>
 
 #include <Eigen/Sparse>
 
@@ -34,6 +36,8 @@ bool MeshEnergyOptions::valid(std::string* why) const {
   if (!(global_step_tolerance > 0.0 && global_step_tolerance < 1.0))
     return fail("extract.global_step_tolerance must be in (0, 1)");
   if (!(function_tolerance > 0.0)) return fail("extract.function_tolerance must be > 0");
+  if (stall_window < 0) return fail("extract.stall_window must be >= 0");
+  if (!(stall_tolerance >= 0.0 && stall_tolerance < 1.0)) return fail("extract.stall_tolerance must be in [0, 1)");
   if (!(gradient_tolerance > 0.0)) return fail("extract.gradient_tolerance must be > 0");
   if (lbfgs_rank < 1) return fail("extract.lbfgs_rank must be at least 1");
   if (projection_steps < 0) return fail("extract.projection_steps must be >= 0");
@@ -121,32 +125,57 @@ ModelDerivatives::ModelDerivatives(const ImplicitModel& model)
   }
 }
 
-template <int Rows>
-void ModelDerivatives::evaluate(const double* x, double* values) const {
+namespace {
+
+/// ModelDerivatives::evaluate() for a table of T columns, the loop over the monomials unrolled
+/// with compile-time exponents and row counts (T = 0: any count, the loop generic). Column k
+/// only feeds the values whose derivative order leaves degree(k) within the model's: the Hessian
+/// rows (4..9) columns of degree <= 2 (the first 10), the gradient rows (1..3) those of degree
+/// <= 3 (the first 20), f all of them.
+template <int Rows, int T, std::size_t Width>
+void evaluate_table(const std::vector<std::array<double, Width>>& columns, const Eigen::Vector3d& center,
+                    double inverse_scale, int needed_power, const double* x, double* values) {
+  constexpr MonomialExponents kMonomials = implicit_monomials();
+  const int power = T == 0 ? needed_power : T > 20 ? 4 : T > 10 ? 3 : T > 4 ? 2 : T > 1 ? 1 : 0;
   double p[3][kMaxImplicitDegree + 1];
   for (int i = 0; i < 3; ++i) {
-    const double y = (x[i] - center_[i]) * inverse_scale_;
+    const double y = (x[i] - center[i]) * inverse_scale;
     p[i][0] = 1.0;
-    for (int e = 1; e <= needed_power_; ++e) p[i][e] = p[i][e - 1] * y;
+    for (int e = 1; e <= power; ++e) p[i][e] = p[i][e - 1] * y;
   }
-  // Column k only feeds the values whose derivative order leaves degree(k) within the model's:
-  // the Hessian rows (4..9) columns of degree <= 2 (the first 10), the gradient rows (1..3) those
-  // of degree <= 3 (the first 20), f all of them.
-  constexpr MonomialExponents kMonomials = implicit_monomials();
-  const std::size_t count = columns_.size();
   double sum[Rows] = {};
-  auto accumulate = [&](std::size_t from, std::size_t to, auto rows) {
-    for (std::size_t k = from; k < std::min(to, count); ++k) {
-      const auto& m = kMonomials[k];
-      const double value = p[0][m[0]] * p[1][m[1]] * p[2][m[2]];
-      const double* column = columns_[k].data();
-      for (int r = 0; r < decltype(rows)::value; ++r) sum[r] += column[r] * value;
-    }
+  auto term = [&](std::size_t k, auto rows) {
+    const auto& m = kMonomials[k];
+    const double value = p[0][m[0]] * p[1][m[1]] * p[2][m[2]];
+    const double* column = columns[k].data();
+    for (int r = 0; r < decltype(rows)::value; ++r) sum[r] += column[r] * value;
   };
-  accumulate(0, 10, std::integral_constant<int, Rows>());
-  accumulate(10, 20, std::integral_constant<int, std::min(Rows, 4)>());
-  accumulate(20, count, std::integral_constant<int, 1>());
+  constexpr int kGradientRows = std::min(Rows, 4);
+  if constexpr (T > 0) {
+    [&]<std::size_t... K>(std::index_sequence<K...>) {
+      (term(K, std::integral_constant<int, K < 10 ? Rows : K < 20 ? kGradientRows : 1>()), ...);
+    }(std::make_index_sequence<T>{});
+  } else {
+    const std::size_t count = columns.size();
+    for (std::size_t k = 0; k < std::min<std::size_t>(10, count); ++k) term(k, std::integral_constant<int, Rows>());
+    for (std::size_t k = 10; k < std::min<std::size_t>(20, count); ++k) term(k, std::integral_constant<int, kGradientRows>());
+    for (std::size_t k = 20; k < count; ++k) term(k, std::integral_constant<int, 1>());
+  }
   for (int r = 0; r < Rows; ++r) values[r] = sum[r];
+}
+
+}  // namespace
+
+template <int Rows>
+void ModelDerivatives::evaluate(const double* x, double* values) const {
+  // The same operations, in the same order, whatever the count.
+  switch (columns_.size()) {
+    case 4: return evaluate_table<Rows, 4>(columns_, center_, inverse_scale_, needed_power_, x, values);
+    case 10: return evaluate_table<Rows, 10>(columns_, center_, inverse_scale_, needed_power_, x, values);
+    case 20: return evaluate_table<Rows, 20>(columns_, center_, inverse_scale_, needed_power_, x, values);
+    case 35: return evaluate_table<Rows, 35>(columns_, center_, inverse_scale_, needed_power_, x, values);
+    default: return evaluate_table<Rows, 0>(columns_, center_, inverse_scale_, needed_power_, x, values);
+  }
 }
 
 double ModelDerivatives::value_and_gradient(const double* x, double* gradient) const {
@@ -158,8 +187,8 @@ double ModelDerivatives::value_and_gradient(const double* x, double* gradient) c
 
 double ModelDerivatives::taubin(const double* x, double sqrt_weight, double gradient_floor,
                                 double* gradient) const {
-  double v[kRows];
-  evaluate<kRows>(x, v);
+  double v[10];
+  evaluate<10>(x, v);
   const double f = v[0];
   const Eigen::Vector3d g(v[1], v[2], v[3]);
   Eigen::Matrix3d H;
@@ -579,13 +608,14 @@ struct LbfgsOutcome {
 /// them (29% of a 01-0-1 extraction's CPU, perf), where these run over fixed chunks of the
 /// variables on `threads` threads (the sums in a fixed order: the result does not depend on
 /// them), the two-loop recursion fusing each update with the next dot product. Stops as Ceres
-/// did: largest gradient entry <= gradient_tolerance, relative cost decrease <=
-/// function_tolerance, or max_iterations. `on_iteration(i)` runs after iteration i (0: the start)
-/// and may throw to stop.
+/// did (largest gradient entry <= gradient_tolerance, relative cost decrease <=
+/// function_tolerance, or max_iterations), or when the cost fell by less than stall_tolerance
+/// (relative) over the last stall_window iterations (ours, see MeshSolver). `on_iteration(i)` runs
+/// after iteration i (0: the start) and may throw to stop.
 template <class Callback>
-LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int rank, int max_iterations,
-                            double function_tolerance, double gradient_tolerance, unsigned threads,
-                            Callback&& on_iteration) {
+LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, const MeshEnergyOptions& options,
+                            double gradient_tolerance, unsigned threads, Callback&& on_iteration) {
+  const int rank = options.lbfgs_rank;
   const Eigen::Index m = f.NumParameters();
   const std::size_t chunks = (static_cast<std::size_t>(m) + kVectorChunk - 1) / kVectorChunk;
   std::vector<double> partial(chunks);
@@ -612,14 +642,16 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int 
   int stored = 0, newest = -1;
   LbfgsOutcome out;
   double cost = 0.0;
+  std::vector<double> costs;  // the cost after each iteration, 0 the start
   if (!f.Evaluate(x.data(), &cost, g.data())) {
     out.usable = false;
     out.termination = "FAILURE: E_mesh is not finite at the start";
     return out;
   }
+  costs.push_back(cost);
   on_iteration(0);
   auto slot = [&](int age) { return static_cast<std::size_t>((newest - age + rank) % rank); };
-  for (int it = 1; it <= max_iterations; ++it) {
+  for (int it = 1; it <= options.max_iterations; ++it) {
     for_chunks([&](Eigen::Index lo, Eigen::Index size) { partial[static_cast<std::size_t>(lo) / kVectorChunk] = g.segment(lo, size).cwiseAbs().maxCoeff(); });
     if (*std::max_element(partial.begin(), partial.end()) <= gradient_tolerance) {
       out.converged = true;
@@ -705,10 +737,20 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, int 
     const double previous = cost;
     cost = trial_cost;
     out.iterations = it;
+    costs.push_back(cost);
     on_iteration(it);
-    if (decrease <= function_tolerance * previous) {
+    if (decrease <= options.function_tolerance * previous) {
       out.converged = true;
       out.termination = "CONVERGENCE: function tolerance reached";
+      return out;
+    }
+    const int window = options.stall_window;
+    if (window > 0 && it >= window && costs[it - window] - cost <= options.stall_tolerance * costs[it - window]) {
+      out.converged = true;
+      std::ostringstream message;
+      message << "CONVERGENCE: E_mesh fell by less than " << 100.0 * options.stall_tolerance << "% over the last "
+              << window << " iterations";
+      out.termination = message.str();
       return out;
     }
   }
@@ -1096,8 +1138,7 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     X.array() /= scale.array();
     const ScaledFunction scaled(function, scale, threads);
     const LbfgsOutcome outcome = minimize_lbfgs(
-        scaled, x.data(), options.lbfgs_rank, options.max_iterations, options.function_tolerance,
-        options.gradient_tolerance * size, threads, [&](int iteration) {
+        scaled, x.data(), options, options.gradient_tolerance * size, threads, [&](int iteration) {
           progress.update("extract", std::min(1.0, double(iteration) / options.max_iterations));
         });
     X.array() *= scale.array();

@@ -97,6 +97,48 @@ namespace sketchsurf {
 ///   0.960e-3; p95 hat 0.01481 -> 0.01458, chair 0.01554 -> 0.01543, 01-0-1 0.01734 -> 0.01730,
 ///   teapot 0.01681 -> 0.01668, box 0.00431 -> 0.00436; extraction wall at load ~3: 01-0-1 7.8 s
 ///   -> 4.0-5.6 s, hat 5.3 -> 3.8-5.0 s (main-thread CPU 6.7 -> 3.4 s, 4.8 -> 2.3-3.1 s).
+///
+/// Session 4 (issue 4: the whole run under 10 s; extraction alone on the cached segmentations of
+/// main bb0733f, load 3-9 on the shared 2-core machine, so main-thread CPU, medians of 3
+/// interleaved runs):
+/// - the stop. E_mesh still falls 0.2-0.55% per 10 iterations at the cap of 300 on hat, chair,
+///   01-0-1, teapot and box, but the surface has settled long before: between the results after
+///   150 and 300 iterations the vertex-to-surface distance is 2e-5 of the diagonal at the median
+///   on 01-0-1 (the median stroke distance is 3e-3), 1.5e-3 at p95 (box 2.7e-4, hat 2.9e-4), and
+///   the stroke distances do not improve (p95 01-0-1 0.0166 at 150, 0.0173 at 300; hat 0.0138,
+///   0.0146). What the late iterations buy is evener triangles and the 1% of far vertices. So L-BFGS
+///   also stops once E_mesh fell by less than stall_tolerance = 5% over the last stall_window = 50
+///   iterations (0.1% per iteration; 10% stopped 01-0-1 at 140 iterations with E_mesh +19%, hat
+///   +13%, box +17%: too much). Before -> after (with the two changes below): iterations hat 300
+///   -> 141, chair 157, 01-0-1 248, teapot 138, box 194; E_mesh hat 0.18379 -> 0.19355 (+5.3%),
+///   chair 0.13625 -> 0.14359 (+5.4%), 01-0-1 0.25062 -> 0.25621 (+2.2%), teapot 0.06713 ->
+///   0.07202 (+7.3%), box 0.36299 -> 0.38361 (+5.7%); median stroke distance -0.3%, +0.1%,
+///   -0.4%, -2.2%, -0.3%; p95 -2.9%, -0.1%, -0.9%, -2.3%, +0.5%; between the two results the
+///   vertex-to-surface distance is at most 1.2e-4 of the diagonal at the median (chair), 1.4e-3 at
+///   p95 (chair, teapot), the smallest triangle angles (1st percentile) 1.1 -> 1.0 deg on 01-0-1,
+///   25.4 -> 24.0 box, 8.1 -> 5.6 chair, 12.4 -> 13.5 teapot, 0.62 -> 0.65 hat. The E_mesh increase
+///   is the price of the speed-up, paid in triangle evenness, not in distance to the strokes;
+///   stall_window = 0 restores the previous stop;
+/// - global_step_tolerance 1e-2 -> 3e-2: 01-0-1's five global steps take 342 conjugate-gradient
+///   iterations instead of 450; alone, E_mesh -0.5% on hat, chair, 01-0-1 and box, +0.6% teapot,
+///   median stroke distance within 1.2%, p95 within 1.5% but hat +2.6% (the rounding noise
+///   above); 1e-1 moved 01-0-1's E_mesh +1.5% and teapot's -2.7%: not taken;
+/// - ModelDerivatives' table evaluation unrolled per column count (4, 10, 20, 35) with
+///   compile-time exponents and row counts, and taubin() reading the ten rows it uses: the same
+///   operations in the same order (the same output bit for bit), 53 -> 44 ns per projection term
+///   (01-0-1's terms, one thread, best of 7);
+/// - main-thread CPU before -> after: hat 2.68 -> 1.68 s, chair 1.07 -> 0.73, 01-0-1 3.88 ->
+///   2.91, teapot 0.80 -> 0.55, box 1.36 -> 1.02; process CPU 4.86 -> 3.07, 2.00 -> 1.32, 7.29 ->
+///   5.30, 1.40 -> 0.96, 2.57 -> 1.88;
+/// - tried and dropped: two accumulators in the table evaluation (62 ns instead of 53: the
+///   registers run out), one reciprocal instead of three divisions in taubin() (no gain), this
+///   file compiled for AVX (no FMA, so the same output; 65-68 ns instead of 54), the unrolled
+///   evaluation forced inline into taubin() (107 ns instead of 44); a team of worker threads kept for the whole optimisation and woken
+///   by a condition variable instead of starting threads at every parallel loop (~25 loops per
+///   L-BFGS iteration; the same output, but 01-0-1's main-thread CPU 3.8-4.0 s instead of 3.1-3.4
+///   s and its wall longer too, on the loaded machine); local_global_iterations = 3 with the
+///   stall test (01-0-1 stops at 280 iterations instead of 248, the same time; E_mesh hat +0.9%,
+///   box -0.6%).
 enum class MeshSolver {
   SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
   ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
@@ -120,14 +162,17 @@ struct MeshEnergyOptions {
                                      ///< (ours, see MeshSolver; each costs ~10 L-BFGS iterations)
   double local_global_tolerance = 1e-3;  ///< they stop early when no vertex moves more, fraction
                                          ///< of the mean edge length
-  double global_step_tolerance = 1e-2;   ///< residual reduction of each global step's conjugate
-                                         ///< gradients (ours)
+  double global_step_tolerance = 3e-2;   ///< residual reduction of each global step's conjugate
+                                         ///< gradients (ours, see MeshSolver)
   MeshSolver solver = MeshSolver::Lbfgs;  ///< see MeshSolver
   int lbfgs_rank = 8;                ///< L-BFGS memory (pairs kept; 20, Ceres' default, spent 40%
                                      ///< of the time in the two-loop recursion, measured)
-  int max_iterations = 300;          ///< solver iterations (L-BFGS or trust-region): the stop
-                                     ///< that acts on real sketches, see MeshSolver
+  int max_iterations = 300;          ///< solver iterations (L-BFGS or trust-region): a cap; on
+                                     ///< real sketches the stall test acts first, see MeshSolver
   double function_tolerance = 1e-8;  ///< relative cost decrease that stops the solver
+  int stall_window = 50;             ///< L-BFGS also stops when E_mesh fell by less than
+  double stall_tolerance = 0.05;     ///< stall_tolerance (relative) over the last stall_window
+                                     ///< iterations; 0 = no such stop (ours, see MeshSolver)
   double gradient_tolerance = 1e-6;  ///< largest gradient entry that stops the solver, fraction of
                                      ///< the mesh's diagonal (the energy is in length^2, its
                                      ///< Jacobi-scaled gradient in length: about how far a vertex

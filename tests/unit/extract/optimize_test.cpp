@@ -244,6 +244,41 @@ TEST(OptimizeMesh, LocalGlobalStartLowersTheEnergyOfTheFirstIterations) {
   EXPECT_LT(energy[1], 0.5 * energy[0]);
 }
 
+TEST(OptimizeMesh, StopsWhenTheEnergyFallsLessThanTheStallToleranceOverTheWindow) {
+  const Eigen::Vector3d half(0.5, 0.5, 0.5);
+  const TriMesh proxy = testing::rounded_box_mesh(3, half, 0.1);
+  const auto models = testing::box_models(half);
+  const LabeledMesh seamed = insert_seams(proxy, testing::box_labels(proxy, half), models);
+  MeshEnergyOptions o;
+  o.stall_window = 10;
+  o.stall_tolerance = 0.05;
+  o.function_tolerance = 1e-15;
+  o.gradient_tolerance = 1e-15;
+  LabeledMesh stopped = seamed;
+  const OptimizeSummary s = optimize_mesh(stopped, models, {}, o);
+  EXPECT_TRUE(s.usable);
+  ASSERT_NE(s.termination.find("fell by less than"), std::string::npos) << s.termination;
+  ASSERT_GT(s.iterations, o.stall_window);
+  ASSERT_LT(s.iterations, o.max_iterations);
+  // The same run capped `window` iterations earlier follows the same path: E_mesh fell by at most
+  // 5% since then, and by more than 5% over the window ending one iteration before.
+  auto capped = [&](int iterations) {
+    LabeledMesh m = seamed;
+    MeshEnergyOptions c = o;
+    c.stall_window = 0;
+    c.max_iterations = iterations;
+    return optimize_mesh(m, models, {}, c).final.total();
+  };
+  EXPECT_GE(s.final.total(), 0.95 * capped(s.iterations - o.stall_window));
+  EXPECT_LT(capped(s.iterations - 1), 0.95 * capped(s.iterations - 1 - o.stall_window));
+  // Without the stall test, the solve goes on to the cap and lowers E_mesh further.
+  LabeledMesh full = seamed;
+  o.stall_window = 0;
+  const OptimizeSummary all = optimize_mesh(full, models, {}, o);
+  EXPECT_GT(all.iterations, s.iterations);
+  EXPECT_LT(all.final.total(), s.final.total());
+}
+
 TEST(OptimizeMesh, RejectsBadInput) {
   TriMesh mesh = testing::icosphere(1);
   LabeledMesh m{mesh, std::vector<std::vector<int>>(mesh.n_vertices(), {1}), std::vector<int>(mesh.n_vertices(), 0)};
@@ -252,6 +287,12 @@ TEST(OptimizeMesh, RejectsBadInput) {
   bad.sharp_angle = 0.1;
   m.labels.assign(mesh.n_vertices(), {0});
   EXPECT_THROW(optimize_mesh(m, {plane_model({0, 0, 1}, 0)}, {}, bad), Error);
+  MeshEnergyOptions stall;
+  stall.stall_tolerance = 1.0;
+  EXPECT_THROW(optimize_mesh(m, {plane_model({0, 0, 1}, 0)}, {}, stall), Error);
+  stall.stall_tolerance = 0.05;
+  stall.stall_window = -1;
+  EXPECT_THROW(optimize_mesh(m, {plane_model({0, 0, 1}, 0)}, {}, stall), Error);
 }
 
 TEST(BlockConjugateGradients, SolvesEachColumnAsIfAloneWhateverTheThreadCount) {
