@@ -5,6 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -18,6 +22,103 @@
 #include "surfacing/parallel.h"
 
 namespace sketchsurf {
+
+namespace {
+
+/// Worker threads kept for a whole optimisation, serving the loops that parallel_for() and
+/// parallel_chunks() would run: the same contiguous chunks (hence the same results whatever the
+/// thread count), without starting and joining threads at every loop (see MeshSolver).
+class WorkerTeam {
+ public:
+  explicit WorkerTeam(unsigned threads) : size_(std::max(1u, threads)), errors_(size_) {
+    for (unsigned w = 1; w < size_; ++w) workers_.emplace_back([this, w] { serve(w); });
+  }
+  ~WorkerTeam() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& t : workers_) t.join();
+  }
+  WorkerTeam(const WorkerTeam&) = delete;
+  WorkerTeam& operator=(const WorkerTeam&) = delete;
+
+  /// parallel_for(begin, end, threads, fn) on the team.
+  template <class Fn>
+  void for_each(std::size_t begin, std::size_t end, Fn&& fn) const {
+    if (end <= begin) return;
+    const std::size_t n = end - begin, parts = std::min<std::size_t>(size_, n);
+    const auto chunk = [&](std::size_t w) {
+      for (std::size_t i = begin + n * w / parts; i < begin + n * (w + 1) / parts; ++i) fn(i);
+    };
+    run(parts, chunk);
+  }
+  /// parallel_chunks(n, chunk, threads, fn) on the team.
+  template <class Fn>
+  void chunks(std::size_t n, std::size_t chunk, Fn&& fn) const {
+    for_each(0, (n + chunk - 1) / chunk, [&](std::size_t c) { fn(c, c * chunk, std::min(n, (c + 1) * chunk)); });
+  }
+
+ private:
+  // chunk(w) for w in [0, parts), chunk 0 on the calling thread; rethrows the first error.
+  template <class Chunk>
+  void run(std::size_t parts, const Chunk& chunk) const {
+    if (parts <= 1) return chunk(0);
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      job_ = [](const void* c, std::size_t w) { (*static_cast<const Chunk*>(c))(w); };
+      context_ = &chunk;
+      parts_ = parts;
+      pending_ = parts - 1;
+      ++generation_;
+    }
+    wake_.notify_all();
+    try {
+      chunk(0);
+    } catch (...) {
+      errors_[0] = std::current_exception();
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [&] { return pending_ == 0; });
+    std::exception_ptr first;
+    for (std::exception_ptr& e : errors_)
+      if (!first) first = std::exchange(e, nullptr);
+      else e = nullptr;
+    if (first) std::rethrow_exception(first);
+  }
+  void serve(std::size_t w) const {
+    std::uint64_t seen = 0;
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+      if (w >= parts_) continue;
+      lock.unlock();
+      try {
+        job_(context_, w);
+      } catch (...) {
+        errors_[w] = std::current_exception();
+      }
+      lock.lock();
+      if (--pending_ == 0) done_.notify_one();
+    }
+  }
+
+  unsigned size_;
+  std::vector<std::thread> workers_;
+  mutable std::mutex mutex_;
+  mutable std::condition_variable wake_, done_;
+  mutable void (*job_)(const void*, std::size_t) = nullptr;
+  mutable const void* context_ = nullptr;
+  mutable std::size_t parts_ = 0, pending_ = 0;
+  mutable std::uint64_t generation_ = 0;
+  mutable std::vector<std::exception_ptr> errors_;
+  bool stop_ = false;
+};
+
+}  // namespace
 
 bool MeshEnergyOptions::valid(std::string* why) const {
   auto fail = [&](const char* what) {
@@ -240,10 +341,13 @@ ceres::CostFunction* PlaneResidual::Create(const Plane& plane, double weight) {
       new PlaneResidual{plane, std::sqrt(weight)});
 }
 
+namespace {
+
+/// block_conjugate_gradients() on `team`.
 template <int K>
-std::vector<double> block_conjugate_gradients(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A, const Eigen::VectorXd& inverse_diagonal,
-                                              const std::vector<double>& B, double tolerance,
-                                              unsigned threads) {
+std::vector<double> conjugate_gradients(const WorkerTeam& team, const Eigen::SparseMatrix<double, Eigen::RowMajor>& A,
+                                        const Eigen::VectorXd& inverse_diagonal, const std::vector<double>& B,
+                                        double tolerance) {
   constexpr std::size_t kChunk = 2048;
   const Eigen::Index n = A.rows();
   const std::size_t chunks = (static_cast<std::size_t>(n) + kChunk - 1) / kChunk;
@@ -251,7 +355,7 @@ std::vector<double> block_conjugate_gradients(const Eigen::SparseMatrix<double, 
   std::vector<double> X(size, 0.0), R = B, Z(size), P(size), Q(size);
   using Sums = std::array<double, K>;
   std::vector<Sums> first(chunks), second(chunks);
-  auto for_chunks = [&](auto&& body) { parallel_chunks(static_cast<std::size_t>(n), kChunk, threads, body); };
+  auto for_chunks = [&](auto&& body) { team.chunks(static_cast<std::size_t>(n), kChunk, body); };
   auto total = [&](const std::vector<Sums>& partial) {
     Sums sum{};
     for (const Sums& p : partial)
@@ -325,6 +429,16 @@ std::vector<double> block_conjugate_gradients(const Eigen::SparseMatrix<double, 
     });
   }
   return X;
+}
+
+}  // namespace
+
+template <int K>
+std::vector<double> block_conjugate_gradients(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A, const Eigen::VectorXd& inverse_diagonal,
+                                              const std::vector<double>& B, double tolerance,
+                                              unsigned threads) {
+  const WorkerTeam team(threads);
+  return conjugate_gradients<K>(team, A, inverse_diagonal, B, tolerance);
 }
 
 template std::vector<double> block_conjugate_gradients<1>(const Eigen::SparseMatrix<double, Eigen::RowMajor>&,
@@ -416,8 +530,8 @@ RowMatrix scalar_laplacian_matrix(const std::vector<const LaplacianTerm*>& terms
 
 /// Y = A X for X, Y of 3 columns stored row by row (x[3 v + c]), each row of A alone on one of
 /// `threads` threads.
-void multiply_rows3(const RowMatrix& A, const double* x, double* y, unsigned threads) {
-  parallel_for(0, static_cast<std::size_t>(A.rows()), threads, [&](std::size_t r) {
+void multiply_rows3(const RowMatrix& A, const double* x, double* y, const WorkerTeam& team) {
+  team.for_each(0, static_cast<std::size_t>(A.rows()), [&](std::size_t r) {
     double sum[3] = {0.0, 0.0, 0.0};
     for (RowMatrix::InnerIterator it(A, static_cast<Eigen::Index>(r)); it; ++it) {
       const double* from = x + 3 * it.col();
@@ -447,8 +561,8 @@ LaplacianSplit split_laplacians(const MeshEnergy& energy) {
 /// E_mesh evaluated in one pass for L-BFGS. Cost is half the sum of squares, as in Ceres.
 class MeshEnergyFunction final : public ceres::FirstOrderFunction {
  public:
-  MeshEnergyFunction(const MeshEnergy& energy, int n, unsigned threads)
-      : energy_(energy), n_(n), threads_(threads), split_(split_laplacians(energy)),
+  MeshEnergyFunction(const MeshEnergy& energy, int n, const WorkerTeam& team)
+      : energy_(energy), n_(n), team_(team), split_(split_laplacians(energy)),
         scalar_(scalar_laplacian_matrix(split_.scalar, n)),
         scalar_transpose_(scalar_.transpose()),
         projected_(laplacian_matrix(split_.projected, n)),
@@ -469,20 +583,20 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
   bool Evaluate(const double* x, double* cost, double* gradient) const override {
     const Eigen::Map<const Eigen::VectorXd> X(x, 3 * n_);
     // Projection: each term alone (in parallel), accumulated in a fixed order.
-    parallel_for(0, energy_.project.size(), threads_, [&](std::size_t i) {
+    team_.for_each(0, energy_.project.size(), [&](std::size_t i) {
       const ProjectionTerm& t = energy_.project[i];
       project_values_[i] = energy_.derivatives[t.model].taubin(x + 3 * t.vertex, std::sqrt(t.weight), t.floor,
                                                                project_gradients_[i].data());
     });
     double total = 0.0;
     for (std::size_t i = 0; i < energy_.project.size(); ++i) total += 0.5 * project_values_[i] * project_values_[i];
-    multiply_rows3(scalar_, x, scalar_residuals_.data(), threads_);
+    multiply_rows3(scalar_, x, scalar_residuals_.data(), team_);
     total += 0.5 * scalar_residuals_.squaredNorm();
     Eigen::Map<Eigen::VectorXd> G(gradient, gradient ? 3 * n_ : 0);
     if (gradient) {
-      multiply_rows3(scalar_transpose_, scalar_residuals_.data(), product_.data(), threads_);
+      multiply_rows3(scalar_transpose_, scalar_residuals_.data(), product_.data(), team_);
       // Per vertex: its projection terms in order, then the Laplacians' part.
-      parallel_for(0, static_cast<std::size_t>(n_), threads_, [&](std::size_t v) {
+      team_.for_each(0, static_cast<std::size_t>(n_), [&](std::size_t v) {
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         for (std::size_t i = first_term_[v]; i < first_term_[v + 1]; ++i)
           sum += project_values_[i] * project_gradients_[i];
@@ -527,14 +641,14 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
   MeshEnergyTerms terms(const double* x) const {
     MeshEnergyTerms e;
     const Eigen::Map<const Eigen::VectorXd> X(x, 3 * n_);
-    parallel_for(0, energy_.project.size(), threads_, [&](std::size_t i) {
+    team_.for_each(0, energy_.project.size(), [&](std::size_t i) {
       const ProjectionTerm& t = energy_.project[i];
       const detail::ProjectionResidual r{&(*energy_.models)[t.model], std::sqrt(t.weight), t.floor};
       r(x + 3 * t.vertex, &project_values_[i]);
     });
     for (double value : project_values_) e.project += value * value;
     Eigen::VectorXd residuals(3 * scalar_.rows());
-    multiply_rows3(scalar_, x, residuals.data(), threads_);
+    multiply_rows3(scalar_, x, residuals.data(), team_);
     const Eigen::Index rows_2d = 3 * static_cast<Eigen::Index>(split_.scalar_2d);
     e.regularize_2d = residuals.head(rows_2d).squaredNorm() + (projected_ * X).squaredNorm();
     e.regularize_1d = residuals.tail(residuals.size() - rows_2d).squaredNorm();
@@ -548,7 +662,7 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
  private:
   const MeshEnergy& energy_;
   int n_;
-  unsigned threads_;
+  const WorkerTeam& team_;
   LaplacianSplit split_;
   // The scalar and projected Laplacian matrices and their transposes (row-major, so that every
   // product runs row-parallel), with buffers for their products.
@@ -564,24 +678,24 @@ constexpr std::size_t kVectorChunk = 16384;
 
 /// body(lo, size) over the kVectorChunk-long chunks of [0, n), on `threads` threads.
 template <class Body>
-void for_vector_chunks(Eigen::Index n, unsigned threads, Body&& body) {
-  parallel_chunks(static_cast<std::size_t>(n), kVectorChunk, threads,
-                  [&](std::size_t, Eigen::Index lo, Eigen::Index hi) { body(lo, hi - lo); });
+void for_vector_chunks(Eigen::Index n, const WorkerTeam& team, Body&& body) {
+  team.chunks(static_cast<std::size_t>(n), kVectorChunk,
+              [&](std::size_t, Eigen::Index lo, Eigen::Index hi) { body(lo, hi - lo); });
 }
 
 /// E_mesh in the variables y = x / s (Jacobi scaling: s = 1 / sqrt(Hessian diagonal)).
 class ScaledFunction final : public ceres::FirstOrderFunction {
  public:
-  ScaledFunction(const MeshEnergyFunction& f, Eigen::VectorXd scale, unsigned threads)
-      : f_(f), scale_(std::move(scale)), x_(scale_.size()), threads_(threads) {}
+  ScaledFunction(const MeshEnergyFunction& f, Eigen::VectorXd scale, const WorkerTeam& team)
+      : f_(f), scale_(std::move(scale)), x_(scale_.size()), team_(team) {}
   int NumParameters() const override { return f_.NumParameters(); }
   bool Evaluate(const double* y, double* cost, double* gradient) const override {
-    for_vector_chunks(scale_.size(), threads_, [&](Eigen::Index lo, Eigen::Index size) {
+    for_vector_chunks(scale_.size(), team_, [&](Eigen::Index lo, Eigen::Index size) {
       x_.segment(lo, size) = scale_.segment(lo, size).cwiseProduct(Eigen::Map<const Eigen::VectorXd>(y + lo, size));
     });
     if (!f_.Evaluate(x_.data(), cost, gradient)) return false;
     if (gradient)
-      for_vector_chunks(scale_.size(), threads_, [&](Eigen::Index lo, Eigen::Index size) {
+      for_vector_chunks(scale_.size(), team_, [&](Eigen::Index lo, Eigen::Index size) {
         Eigen::Map<Eigen::VectorXd>(gradient + lo, size).array() *= scale_.segment(lo, size).array();
       });
     return true;
@@ -590,7 +704,7 @@ class ScaledFunction final : public ceres::FirstOrderFunction {
   const MeshEnergyFunction& f_;
   Eigen::VectorXd scale_;
   mutable Eigen::VectorXd x_;  // buffer of the unscaled positions (a 2 MB allocation per call)
-  unsigned threads_;
+  const WorkerTeam& team_;
 };
 
 /// What minimize_lbfgs() did.
@@ -614,21 +728,21 @@ struct LbfgsOutcome {
 /// after iteration i (0: the start) and may throw to stop.
 template <class Callback>
 LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, const MeshEnergyOptions& options,
-                            double gradient_tolerance, unsigned threads, Callback&& on_iteration) {
+                            double gradient_tolerance, const WorkerTeam& team, Callback&& on_iteration) {
   const int rank = options.lbfgs_rank;
   const Eigen::Index m = f.NumParameters();
   const std::size_t chunks = (static_cast<std::size_t>(m) + kVectorChunk - 1) / kVectorChunk;
   std::vector<double> partial(chunks);
   // sum over chunks of body(lo, hi), each chunk on one thread, added in chunk order.
   auto reduce = [&](auto&& body) {
-    parallel_chunks(static_cast<std::size_t>(m), kVectorChunk, threads,
-                    [&](std::size_t c, Eigen::Index lo, Eigen::Index hi) { partial[c] = body(lo, hi); });
+    team.chunks(static_cast<std::size_t>(m), kVectorChunk,
+                [&](std::size_t c, Eigen::Index lo, Eigen::Index hi) { partial[c] = body(lo, hi); });
     double sum = 0.0;
     for (double p : partial) sum += p;
     return sum;
   };
   // Elementwise work (the same numbers whatever the threads) over the same chunks.
-  auto for_chunks = [&](auto&& body) { for_vector_chunks(m, threads, body); };
+  auto for_chunks = [&](auto&& body) { for_vector_chunks(m, team, body); };
   // The iterate, written back to x0 however the minimisation ends.
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0, m);
   struct WriteBack {
@@ -907,7 +1021,7 @@ class GlobalStep {
   /// x (3n, world units) moves to the minimiser of the quadratic whose pull terms are, per vertex,
   /// its projection-term weights times |x_v - p|^2; `pulled` holds per vertex the weighted sum of
   /// its points p. Solved for the change of x, so that the tolerance is relative to the residual.
-  void solve(const Eigen::MatrixX3d& pulled, unsigned threads, std::vector<double>& x) const {
+  void solve(const Eigen::MatrixX3d& pulled, const WorkerTeam& team, std::vector<double>& x) const {
     const Eigen::MatrixX3d rhs = pulled * frame_.transpose() + constant_rhs_;
     Eigen::MatrixX3d y(n_, 3);
     for (int v = 0; v < n_; ++v) y.row(v) = (frame_ * Eigen::Map<const Eigen::Vector3d>(&x[3 * v])).transpose();
@@ -916,7 +1030,7 @@ class GlobalStep {
       const int first = s == 0 && plane_ ? 1 : 0, count = plane_ ? (s == 0 ? 2 : 1) : 3;
       // The residual rhs - A y, n x count row-major.
       std::vector<double> residual(static_cast<std::size_t>(n_) * count);
-      parallel_for(0, static_cast<std::size_t>(n_), threads, [&](std::size_t v) {
+      team.for_each(0, static_cast<std::size_t>(n_), [&](std::size_t v) {
         for (int j = 0; j < count; ++j) {
           double sum = rhs(static_cast<Eigen::Index>(v), first + j);
           for (RowMatrix::InnerIterator e(matrix_[s], static_cast<Eigen::Index>(v)); e; ++e)
@@ -925,9 +1039,9 @@ class GlobalStep {
         }
       });
       const std::vector<double> change =
-          count == 3 ? detail::block_conjugate_gradients<3>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads)
-          : count == 2 ? detail::block_conjugate_gradients<2>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads)
-                       : detail::block_conjugate_gradients<1>(matrix_[s], inverse_diagonal_[s], residual, tolerance_, threads);
+          count == 3 ? detail::conjugate_gradients<3>(team, matrix_[s], inverse_diagonal_[s], residual, tolerance_)
+          : count == 2 ? detail::conjugate_gradients<2>(team, matrix_[s], inverse_diagonal_[s], residual, tolerance_)
+                       : detail::conjugate_gradients<1>(team, matrix_[s], inverse_diagonal_[s], residual, tolerance_);
       for (int v = 0; v < n_; ++v)
         for (int j = 0; j < count; ++j) y(v, first + j) += change[static_cast<std::size_t>(v) * count + j];
     }
@@ -970,13 +1084,13 @@ class GlobalStep {
 /// the L-BFGS solve does it. Runs `iterations` times or until no vertex moves more than
 /// `tolerance` (mesh units); returns the iterations made.
 int local_global(const MeshEnergy& energy, int n, int iterations, int projection_steps, double max_step,
-                 double tolerance, double solve_tolerance, unsigned threads, std::vector<double>& x) {
+                 double tolerance, double solve_tolerance, const WorkerTeam& team, std::vector<double>& x) {
   const GlobalStep global(energy, n, solve_tolerance);
   std::vector<Eigen::Vector3d> points(energy.project.size());
   Eigen::MatrixX3d pulled(n, 3);
   std::vector<double> previous;
   for (int it = 1; it <= iterations; ++it) {
-    parallel_for(0, energy.project.size(), threads, [&](std::size_t i) {
+    team.for_each(0, energy.project.size(), [&](std::size_t i) {
       const ProjectionTerm& t = energy.project[i];
       points[i] = project_onto(energy.derivatives[t.model], Eigen::Map<const Eigen::Vector3d>(&x[3 * t.vertex]),
                                projection_steps, max_step);
@@ -985,7 +1099,7 @@ int local_global(const MeshEnergy& energy, int n, int iterations, int projection
     for (std::size_t i = 0; i < points.size(); ++i)
       pulled.row(energy.project[i].vertex) += energy.project[i].weight * points[i].transpose();
     previous = x;
-    global.solve(pulled, threads, x);
+    global.solve(pulled, team, x);
     double moved = 0.0;
     for (int v = 0; v < n; ++v)
       moved = std::max(moved, (Eigen::Map<const Eigen::Vector3d>(&x[3 * v]) -
@@ -1103,6 +1217,7 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
   }
   const double size = n > 0 ? (hi - lo).norm() : 1.0;
   const unsigned threads = resolve_threads(options.threads);
+  const WorkerTeam team(threads);
   const MeshEnergy initial_energy = build_energy(lm, models, constraints, options);
   std::vector<double> x(3 * static_cast<std::size_t>(n));
   auto load = [&] {
@@ -1113,7 +1228,7 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
   };
   load();
   OptimizeSummary summary;
-  summary.initial = MeshEnergyFunction(initial_energy, n, threads).terms(x.data());
+  summary.initial = MeshEnergyFunction(initial_energy, n, team).terms(x.data());
   const auto start = std::chrono::steady_clock::now();
   if (options.projection_steps > 0) {
     project_vertices(lm, models, options.projection_steps, options.max_projection_step * size, threads);
@@ -1127,18 +1242,18 @@ OptimizeSummary optimize_mesh(LabeledMesh& lm, const std::vector<ImplicitModel>&
     summary.local_global_iterations = local_global(
         energy, n, options.local_global_iterations, std::max(1, options.projection_steps),
         options.max_projection_step * size, options.local_global_tolerance * mean_edge,
-        options.global_step_tolerance, threads, x);
+        options.global_step_tolerance, team, x);
   }
-  const MeshEnergyFunction function(energy, n, threads);
+  const MeshEnergyFunction function(energy, n, team);
 
   if (options.solver == MeshSolver::Lbfgs) {
     // Jacobi scaling: L-BFGS runs on y = x / s.
     const Eigen::VectorXd scale = function.hessian_diagonal().cwiseMax(1e-12).cwiseSqrt().cwiseInverse();
     Eigen::Map<Eigen::VectorXd> X(x.data(), 3 * n);
     X.array() /= scale.array();
-    const ScaledFunction scaled(function, scale, threads);
+    const ScaledFunction scaled(function, scale, team);
     const LbfgsOutcome outcome = minimize_lbfgs(
-        scaled, x.data(), options, options.gradient_tolerance * size, threads, [&](int iteration) {
+        scaled, x.data(), options, options.gradient_tolerance * size, team, [&](int iteration) {
           progress.update("extract", std::min(1.0, double(iteration) / options.max_iterations));
         });
     X.array() *= scale.array();

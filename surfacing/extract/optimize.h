@@ -135,13 +135,21 @@ namespace sketchsurf {
 ///   distance to the cube 4.7e-4 -> 3.9e-4 and 6.0e-4 -> 4.2e-4 of the diagonal; time within the
 ///   noise (main-thread CPU 334 -> 303 ms, 983 -> 1039 ms); peak RSS 117 MB; all 14 `data`
 ///   surface tests pass;
+/// - the loops of an optimisation (~25 per L-BFGS iteration, 3 per conjugate-gradient iteration,
+///   ~7500 on 01-0-1) run on a WorkerTeam (optimize.cpp) whose threads wait on a condition
+///   variable between loops, where parallel_for() starts and joins threads at every loop (~50 us
+///   of CPU each: teapot's extraction took 0.70 s of CPU on one thread, 0.95 s on two). The same
+///   chunks, so the same output bit for bit (all five sketches); after the changes above ->
+///   with the team, interleaved, load 5-6: process CPU hat 3.30 -> 3.21 s, chair 1.33 -> 1.16,
+///   01-0-1 6.66 -> 6.61, teapot 0.98 -> 0.80, box 2.16 -> 1.83; main-thread CPU 1.86 -> 1.81,
+///   0.73 -> 0.65, 3.63 -> 3.61, 0.56 -> 0.45, 1.15 -> 1.02; wall 5.9 -> 5.0, 3.5 -> 2.1, 11.1 ->
+///   10.9, 2.9 -> 1.3, 5.2 -> 3.0 s. (A first try, on the previous code at load ~3, had 01-0-1's
+///   main-thread CPU 3.8-4.0 s instead of 3.1-3.4 s; at load 5-6 the team was ahead on 01-0-1,
+///   6.2-6.3 s of process CPU instead of 6.5-6.8, and on all five sketches above);
 /// - tried and dropped: two accumulators in the table evaluation (62 ns instead of 53: the
 ///   registers run out), one reciprocal instead of three divisions in taubin() (no gain), this
 ///   file compiled for AVX (no FMA, so the same output; 65-68 ns instead of 54), the unrolled
-///   evaluation forced inline into taubin() (107 ns instead of 44); a team of worker threads kept for the whole optimisation and woken
-///   by a condition variable instead of starting threads at every parallel loop (~25 loops per
-///   L-BFGS iteration; the same output, but 01-0-1's main-thread CPU 3.8-4.0 s instead of 3.1-3.4
-///   s and its wall longer too, on the loaded machine); local_global_iterations = 3 with the
+///   evaluation forced inline into taubin() (107 ns instead of 44); local_global_iterations = 3 with the
 ///   stall test (01-0-1 stops at 280 iterations instead of 248, the same time; E_mesh hat +0.9%,
 ///   box -0.6%).
 enum class MeshSolver {
