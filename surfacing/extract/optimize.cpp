@@ -138,7 +138,8 @@ bool MeshEnergyOptions::valid(std::string* why) const {
     return fail("extract.global_step_tolerance must be in (0, 1)");
   if (!(function_tolerance > 0.0)) return fail("extract.function_tolerance must be > 0");
   if (stall_window < 0) return fail("extract.stall_window must be >= 0");
-  if (!(stall_tolerance >= 0.0 && stall_tolerance < 1.0)) return fail("extract.stall_tolerance must be in [0, 1)");
+  if (!(stall_tolerance >= 0.0 && stall_tolerance < 1.0))
+    return fail("extract.stall_tolerance must be in [0, 1)");
   if (!(gradient_tolerance > 0.0)) return fail("extract.gradient_tolerance must be > 0");
   if (lbfgs_rank < 1) return fail("extract.lbfgs_rank must be at least 1");
   if (projection_steps < 0) return fail("extract.projection_steps must be >= 0");

@@ -106,10 +106,10 @@ namespace sketchsurf {
 ///   150 and 300 iterations the vertex-to-surface distance is 2e-5 of the diagonal at the median
 ///   on 01-0-1 (the median stroke distance is 3e-3), 1.5e-3 at p95 (box 2.7e-4, hat 2.9e-4), and
 ///   the stroke distances do not improve (p95 01-0-1 0.0166 at 150, 0.0173 at 300; hat 0.0138,
-///   0.0146). What the late iterations buy is evener triangles and the 1% of far vertices. So L-BFGS
-///   also stops once E_mesh fell by less than stall_tolerance = 5% over the last stall_window = 50
+///   0.0146). What the late iterations buy is evener triangles and the 1% of far vertices. So
+///   L-BFGS also stops once E_mesh fell by less than stall_tolerance = 5% over the last stall_window = 50
 ///   iterations (0.1% per iteration; 10% stopped 01-0-1 at 140 iterations with E_mesh +19%, hat
-///   +13%, box +17%: too much). Before -> after (with the two changes below): iterations hat 300
+///   +13%, box +17%: too much). Before -> after (with the next two items): iterations hat 300
 ///   -> 141, chair 157, 01-0-1 248, teapot 138, box 194; E_mesh hat 0.18379 -> 0.19355 (+5.3%),
 ///   chair 0.13625 -> 0.14359 (+5.4%), 01-0-1 0.25062 -> 0.25621 (+2.2%), teapot 0.06713 ->
 ///   0.07202 (+7.3%), box 0.36299 -> 0.38361 (+5.7%); median stroke distance -0.3%, +0.1%,
@@ -149,9 +149,9 @@ namespace sketchsurf {
 /// - tried and dropped: two accumulators in the table evaluation (62 ns instead of 53: the
 ///   registers run out), one reciprocal instead of three divisions in taubin() (no gain), this
 ///   file compiled for AVX (no FMA, so the same output; 65-68 ns instead of 54), the unrolled
-///   evaluation forced inline into taubin() (107 ns instead of 44); local_global_iterations = 3 with the
-///   stall test (01-0-1 stops at 280 iterations instead of 248, the same time; E_mesh hat +0.9%,
-///   box -0.6%).
+///   evaluation forced inline into taubin() (107 ns instead of 44); local_global_iterations = 3
+///   with the stall test (01-0-1 stops at 280 iterations instead of 248, the same time; E_mesh
+///   hat +0.9%, box -0.6%).
 enum class MeshSolver {
   SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
   ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
