@@ -167,21 +167,147 @@ bool FitOptions::valid(std::string* why) const {
   return true;
 }
 
-ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points,
-                           Eigen::Ref<const Eigen::MatrixX3d> normal_points,
-                           Eigen::Ref<const Eigen::MatrixX3d> normals, const FitOptions& options) {
+NormalMoments::NormalMoments(const Eigen::Vector3d& about) : origin(about) {
+  lo.setConstant(std::numeric_limits<double>::infinity());
+  hi.setConstant(-std::numeric_limits<double>::infinity());
+}
+
+void NormalMoments::add(const Eigen::Vector3d& position, const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d y = position - origin;
+  ++count;
+  lo = lo.cwiseMin(position);
+  hi = hi.cwiseMax(position);
+  sum += y;
+  squared += y.squaredNorm();
+  const Powers powers(y, 3);
+  for (int k = 0; k < kPowers; ++k) {
+    const double m = powers.monomial(k);
+    for (int i = 0; i < 3; ++i) directional[i][k] += normal[i] * m;
+  }
+}
+
+NormalMoments& NormalMoments::operator+=(const NormalMoments& other) {
+  if (other.origin != origin)
+    throw Error::usage("NormalMoments: adding sums about another origin");
+  count += other.count;
+  lo = lo.cwiseMin(other.lo);
+  hi = hi.cwiseMax(other.hi);
+  sum += other.sum;
+  squared += other.squared;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < kPowers; ++k) directional[i][k] += other.directional[i][k];
+  return *this;
+}
+
+namespace {
+
+// kMonomialIndex[a][b][c]: index in implicit_monomials() of x^a y^b z^c (a + b + c <= 4).
+constexpr auto kMonomialIndex = [] {
+  std::array<std::array<std::array<int, kMaxImplicitDegree + 1>, kMaxImplicitDegree + 1>,
+             kMaxImplicitDegree + 1>
+      index{};
+  for (int k = 0; k < static_cast<int>(kMonomials.size()); ++k)
+    index[kMonomials[k][0]][kMonomials[k][1]][kMonomials[k][2]] = k;
+  return index;
+}();
+
+// The normal points' share of a fit, in the model's normalised coordinates y = (x - center) /
+// scale: sum |y|^2, and the alignment rows n . grad m_k(y), k = 1..t-1 (their sum, and each
+// vertex's row for Eq. 6's per-vertex form).
+struct NormalTerms {
+  double squared = 0.0;
+  Eigen::VectorXd align_sum;
+  Eigen::MatrixXd align_rows;
+};
+
+// From the points themselves.
+NormalTerms terms_from_points(const ImplicitModel& frame, Eigen::Ref<const Eigen::MatrixX3d> points,
+                              Eigen::Ref<const Eigen::MatrixX3d> normals, bool align,
+                              bool per_vertex) {
+  const int u = monomial_count(frame.degree) - 1;
+  NormalTerms r;
+  r.align_sum = Eigen::VectorXd::Zero(u);
+  r.align_rows.resize(align && per_vertex ? points.rows() : 0, u);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Eigen::Vector3d y = (points.row(i).transpose() - frame.center) / frame.scale;
+    r.squared += y.squaredNorm();
+    if (!align) continue;
+    const Powers powers(y, frame.degree);
+    const Eigen::Vector3d n = normals.row(i).transpose();
+    for (int k = 1; k <= u; ++k) {
+      const double d = powers.directional(k, n);
+      if (per_vertex) r.align_rows(i, k - 1) = d;
+      r.align_sum[k - 1] += d;
+    }
+  }
+  return r;
+}
+
+// From the moments about o: y = (z + d) / s with z = x - o, d = o - center, s = scale, so
+// sum n_i y^g = s^-|g| sum_{e <= g} prod_j C(g_j, e_j) d_j^(g_j - e_j) sum n_i z^e.
+NormalTerms terms_from_moments(const ImplicitModel& frame, const NormalMoments& m, bool align) {
+  const int u = monomial_count(frame.degree) - 1;
+  NormalTerms r;
+  const Eigen::Vector3d d = m.origin - frame.center;
+  const double n = static_cast<double>(m.count);
+  r.squared = (m.squared + 2.0 * d.dot(m.sum) + n * d.squaredNorm()) / (frame.scale * frame.scale);
+  r.align_sum = Eigen::VectorXd::Zero(u);
+  if (!align) return r;
+  constexpr double kBinomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  double shift[3][4];  // C(g, e) d^(g - e) is kBinomial[g][e] * shift[j][g - e]
+  for (int j = 0; j < 3; ++j) {
+    shift[j][0] = 1.0;
+    for (int e = 1; e < 4; ++e) shift[j][e] = shift[j][e - 1] * d[j];
+  }
+  // S[i][g]: sum n_i y^g for the monomials g of degree <= degree - 1 (gradients of degree-d ones).
+  const int gradient_monomials = monomial_count(frame.degree - 1);
+  double S[3][NormalMoments::kPowers];
+  for (int g = 0; g < gradient_monomials; ++g) {
+    const auto& ge = kMonomials[g];
+    const double unit = std::pow(frame.scale, -(ge[0] + ge[1] + ge[2]));
+    for (int i = 0; i < 3; ++i) {
+      double acc = 0.0;
+      for (int a = 0; a <= ge[0]; ++a)
+        for (int b = 0; b <= ge[1]; ++b)
+          for (int c = 0; c <= ge[2]; ++c)
+            acc += kBinomial[ge[0]][a] * shift[0][ge[0] - a] * kBinomial[ge[1]][b] *
+                   shift[1][ge[1] - b] * kBinomial[ge[2]][c] * shift[2][ge[2] - c] *
+                   m.directional[i][kMonomialIndex[a][b][c]];
+      S[i][g] = unit * acc;
+    }
+  }
+  for (int k = 1; k <= u; ++k) {
+    const auto& me = kMonomials[k];
+    double value = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      if (me[i] == 0) continue;
+      auto g = me;
+      --g[i];
+      value += me[i] * S[i][kMonomialIndex[g[0]][g[1]][g[2]]];
+    }
+    r.align_sum[k - 1] = value;
+  }
+  return r;
+}
+
+void check_fit_input(int degree, Eigen::Ref<const Eigen::MatrixX3d> points,
+                     const FitOptions& options) {
   if (degree < 1 || degree > kMaxImplicitDegree)
     throw Error::usage("fit_implicit: degree must be in 1..4, got " + std::to_string(degree));
   std::string why;
   if (!options.valid(&why)) throw Error::usage("fit_implicit: invalid options: " + why);
-  if (normal_points.rows() != normals.rows())
-    throw Error::usage("fit_implicit: " + std::to_string(normal_points.rows()) +
-                       " normal points but " + std::to_string(normals.rows()) + " normals");
   if (points.rows() == 0) throw Error::processing("fit_implicit: no stroke points to fit");
-  if (!all_finite(points) || !all_finite(normal_points) || !all_finite(normals))
+  if (!all_finite(points))
     throw Error::processing("fit_implicit: non-finite point or normal coordinates");
+}
 
-  const Eigen::Index np = points.rows(), nn = normal_points.rows();
+// Eq. 6 / App. B once the normal points are reduced to their count, box [lo, hi] and, in the
+// model's frame, normal_terms(frame, align) -> NormalTerms.
+template <class NormalTermsFn>
+ImplicitModel solve_fit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points, Eigen::Index nn,
+                        const Eigen::Vector3d& normal_lo, const Eigen::Vector3d& normal_hi,
+                        NormalTermsFn&& normal_terms, const FitOptions& options) {
+  const Eigen::Index np = points.rows();
   const int t = monomial_count(degree);
   const int u = t - 1;  // unknowns: the non-constant normalised columns
 
@@ -194,21 +320,18 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
     Eigen::Vector3d lo = points.colwise().minCoeff().transpose();
     Eigen::Vector3d hi = points.colwise().maxCoeff().transpose();
     if (nn > 0) {
-      lo = lo.cwiseMin(normal_points.colwise().minCoeff().transpose());
-      hi = hi.cwiseMax(normal_points.colwise().maxCoeff().transpose());
+      lo = lo.cwiseMin(normal_lo);
+      hi = hi.cwiseMax(normal_hi);
     }
     const double diagonal = (hi - lo).norm();
     model.scale = diagonal > 0.0 ? diagonal : 1.0;
   }
-  const auto normalised = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d {
-    return (x - model.center) / model.scale;
-  };
 
   // Monomial columns over the stroke points, their means and standard deviations (App. B).
   Eigen::MatrixXd columns(np, u);
   double radius2 = 0.0;
   for (Eigen::Index i = 0; i < np; ++i) {
-    const Eigen::Vector3d y = normalised(points.row(i).transpose());
+    const Eigen::Vector3d y = (points.row(i).transpose() - model.center) / model.scale;
     radius2 += y.squaredNorm();
     const Powers powers(y, degree);
     for (int k = 1; k < t; ++k) columns(i, k - 1) = powers.monomial(k);
@@ -217,20 +340,10 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
   // form, only their sum for App. B's (no #N x t matrix: regions have up to ~50k such vertices).
   const bool align = nn > 0 && options.mu > 0.0;
   const bool per_vertex = options.alignment == NormalAlignment::PerVertex;
-  Eigen::MatrixXd align_rows(align && per_vertex ? nn : 0, u);
-  Eigen::VectorXd align_sum = Eigen::VectorXd::Zero(u);
-  for (Eigen::Index i = 0; i < nn; ++i) {
-    const Eigen::Vector3d y = normalised(normal_points.row(i).transpose());
-    radius2 += y.squaredNorm();
-    if (!align) continue;
-    const Powers powers(y, degree);
-    const Eigen::Vector3d n = normals.row(i).transpose();
-    for (int k = 1; k < t; ++k) {
-      const double d = powers.directional(k, n);
-      if (per_vertex) align_rows(i, k - 1) = d;
-      align_sum[k - 1] += d;
-    }
-  }
+  NormalTerms normal = normal_terms(static_cast<const ImplicitModel&>(model), align);
+  radius2 += normal.squared;
+  Eigen::VectorXd& align_sum = normal.align_sum;
+  Eigen::MatrixXd& align_rows = normal.align_rows;
   double radius = std::sqrt(radius2 / static_cast<double>(np + nn));
   if (!(radius > 0.0)) radius = 1.0;
 
@@ -293,6 +406,47 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
     model.coefficients[0] -= model.coefficients[k] * means[k - 1];
   }
   return model;
+}
+
+}  // namespace
+
+ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points,
+                           Eigen::Ref<const Eigen::MatrixX3d> normal_points,
+                           Eigen::Ref<const Eigen::MatrixX3d> normals, const FitOptions& options) {
+  check_fit_input(degree, points, options);
+  if (normal_points.rows() != normals.rows())
+    throw Error::usage("fit_implicit: " + std::to_string(normal_points.rows()) +
+                       " normal points but " + std::to_string(normals.rows()) + " normals");
+  if (!all_finite(normal_points) || !all_finite(normals))
+    throw Error::processing("fit_implicit: non-finite point or normal coordinates");
+  const Eigen::Index nn = normal_points.rows();
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+  if (nn > 0) {
+    lo = normal_points.colwise().minCoeff().transpose();
+    hi = normal_points.colwise().maxCoeff().transpose();
+  }
+  const bool per_vertex = options.alignment == NormalAlignment::PerVertex;
+  return solve_fit(
+      degree, points, nn, lo, hi,
+      [&](const ImplicitModel& frame, bool align) {
+        return terms_from_points(frame, normal_points, normals, align, per_vertex);
+      },
+      options);
+}
+
+ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points,
+                           const NormalMoments& normals, const FitOptions& options) {
+  check_fit_input(degree, points, options);
+  if (options.alignment != NormalAlignment::Summed)
+    throw Error::usage("fit_implicit: normal moments give the summed alignment only");
+  bool finite = std::isfinite(normals.squared) && normals.sum.allFinite();
+  for (const auto& row : normals.directional)
+    for (double x : row) finite = finite && std::isfinite(x);
+  if (!finite) throw Error::processing("fit_implicit: non-finite normal moments");
+  return solve_fit(
+      degree, points, normals.count, normals.lo, normals.hi,
+      [&](const ImplicitModel& frame, bool align) { return terms_from_moments(frame, normals, align); },
+      options);
 }
 
 }  // namespace sketchsurf

@@ -131,6 +131,36 @@ ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points
                            Eigen::Ref<const Eigen::MatrixX3d> normals,
                            const FitOptions& options = {});
 
+/// What the summed alignment (App. B) needs of a set of normal points: sums over them that add up
+/// over any partition of the set, so that a region's are the sum of its parts' (PEARL keeps one
+/// per labelled-graph vertex instead of visiting every proxy vertex of a region in every fit; on
+/// 01-0-1, 82k proxy vertices, those visits were a fifth of the segmentation). The sums are of
+/// powers of y = x - origin: keep the origin near the data (fits convert them to each model's
+/// frame, which loses about eps (|y| / model scale)^3 relative).
+struct NormalMoments {
+  /// Monomials y^e with |e| <= 3, in implicit_monomials() order: n . grad m for the quartic's m.
+  static constexpr int kPowers = 20;
+
+  explicit NormalMoments(const Eigen::Vector3d& about = Eigen::Vector3d::Zero());
+  /// Adds the normal point `position` with unit normal `normal`.
+  void add(const Eigen::Vector3d& position, const Eigen::Vector3d& normal);
+  /// Adds another set's sums; throws Error (Usage) when its origin differs.
+  NormalMoments& operator+=(const NormalMoments& other);
+
+  Eigen::Vector3d origin;
+  long count = 0;
+  Eigen::Vector3d lo, hi;                 ///< bounding box of the positions (count > 0)
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();  ///< sum of y
+  double squared = 0.0;                   ///< sum of |y|^2
+  std::array<std::array<double, kPowers>, 3> directional{};  ///< [i][k]: sum of n_i y^e_k
+};
+
+/// fit_implicit with the normal points given by their moments: the summed alignment only
+/// (options.alignment must be Summed; Usage error otherwise). The same fit as from the points
+/// themselves, up to rounding.
+ImplicitModel fit_implicit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points,
+                           const NormalMoments& normals, const FitOptions& options = {});
+
 // ------------------------------------------------------------------------------------------------
 // Template definitions.
 

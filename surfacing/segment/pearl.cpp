@@ -190,7 +190,9 @@ struct Segmenter::Impl {
   double unit = 1.0;
   StrokeGraph graph;       // normalised
   SimplifiedGraph coarse;
-  std::vector<int> children_offsets, children;  // proxy vertices of each coarse vertex (CSR)
+  // Per labelled-graph vertex: the moments of its proxy vertices without stroke points (the normal
+  // points of every fit, App. B), added up over a region instead of visited in each of its fits.
+  std::vector<NormalMoments> normal_moments;
   double fidelity_scale = 0.0;  // 1 / (eps^2 N_p)
   double smooth_scale = 0.0;    // w_smooth / W, W the proxy's total edge weight
   FitOptions fit;
@@ -211,32 +213,44 @@ struct Segmenter::Impl {
     return c;
   }
 
-  // Fits a model of `degree` to the points of the proxy vertices `fine` (Eq. 6): their stroke
-  // points, and the normals of those without stroke points. nullopt without stroke points.
-  std::optional<ImplicitModel> fit_vertices(const std::vector<int>& fine, int degree,
-                                            const FitOptions& fit_options) const {
-    std::vector<char> seen(graph.points.rows(), 0);
-    std::vector<int> points, normal_vertices;
-    for (int v : fine) {
-      const auto pv = graph.points_of(v);
-      if (pv.empty()) normal_vertices.push_back(v);
-      for (int p : pv)
-        if (!seen[p]) seen[p] = 1, points.push_back(p);
+  // Fits a model of `degree` to the labelled-graph vertices `members` (Eq. 6): the stroke points
+  // of their proxy vertices, and the normals of those without stroke points, through their
+  // moments (a vertex with stroke points is never merged, App. C: its points are its survivor's).
+  // nullopt without stroke points.
+  std::optional<ImplicitModel> fit_members(const std::vector<int>& members, int degree,
+                                           const FitOptions& fit_options) const {
+    NormalMoments normals;
+    std::vector<int> points;
+    for (int vc : members) {
+      normals += normal_moments[vc];
+      const auto pv = graph.points_of(coarse.coarse_to_fine[vc]);
+      points.insert(points.end(), pv.begin(), pv.end());
     }
-    if (points.empty()) return std::nullopt;
-    Eigen::MatrixX3d P(points.size(), 3), N(normal_vertices.size(), 3), n(normal_vertices.size(), 3);
-    for (std::size_t i = 0; i < points.size(); ++i) P.row(i) = graph.points.row(points[i]);
-    for (std::size_t i = 0; i < normal_vertices.size(); ++i) {
-      N.row(i) = graph.positions.row(normal_vertices[i]);
-      n.row(i) = graph.normals.row(normal_vertices[i]);
-    }
-    return fit_implicit(degree, P, N, n, fit_options);
+    return fit_points(std::move(points), normals, degree, fit_options);
   }
 
-  // Proxy vertices merged into labelled-graph vertex vc (App. C), increasing.
-  std::span<const int> coarse_children(int vc) const {
-    return {children.data() + children_offsets[vc],
-            static_cast<std::size_t>(children_offsets[vc + 1] - children_offsets[vc])};
+  // The same for the proxy vertices `fine` (scribbles).
+  std::optional<ImplicitModel> fit_vertices(const std::vector<int>& fine, int degree,
+                                            const FitOptions& fit_options) const {
+    NormalMoments normals;
+    std::vector<int> points;
+    for (int v : fine) {
+      const auto pv = graph.points_of(v);
+      if (pv.empty()) normals.add(graph.positions.row(v), graph.normals.row(v));
+      points.insert(points.end(), pv.begin(), pv.end());
+    }
+    return fit_points(std::move(points), normals, degree, fit_options);
+  }
+
+  // Fits the stroke points `points` (indices; a sample attached to several vertices counts once).
+  std::optional<ImplicitModel> fit_points(std::vector<int> points, const NormalMoments& normals,
+                                          int degree, const FitOptions& fit_options) const {
+    std::sort(points.begin(), points.end());
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    if (points.empty()) return std::nullopt;
+    Eigen::MatrixX3d P(points.size(), 3);
+    for (std::size_t i = 0; i < points.size(); ++i) P.row(i) = graph.points.row(points[i]);
+    return fit_implicit(degree, P, normals, fit_options);
   }
 
   // E_fidelity (unscaled) of the labelled-graph vertices `vertices` under a candidate.
@@ -308,12 +322,7 @@ struct Segmenter::Impl {
   // `members` (increasing), through the run's cache; nullptr when they have no stroke point.
   CandidatePtr fit_region(const std::vector<int>& members, int degree, FitCache& cache) const {
     if (CandidatePtr c = cache.find(degree, members)) return c;
-    std::vector<int> fine;
-    for (int vc : members) {
-      const auto merged = coarse_children(vc);
-      fine.insert(fine.end(), merged.begin(), merged.end());
-    }
-    auto model = fit_vertices(fine, degree, fit);
+    auto model = fit_members(members, degree, fit);
     if (!model) return nullptr;
     CandidatePtr c = make_candidate(std::move(*model), members);
     cache.insert(c);
@@ -544,14 +553,11 @@ Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOp
     throw Error::processing("no stroke could be associated with the proxy: is the proxy near the strokes?");
   m.coarse = options.simplify ? simplify_graph(mesh, m.graph, ao, options.simplification)
                               : identity_graph(m.graph);
-  m.children_offsets.assign(m.coarse.vertex_count + 1, 0);
-  for (int c : m.coarse.fine_to_coarse) ++m.children_offsets[c + 1];
-  for (int c = 0; c < m.coarse.vertex_count; ++c) m.children_offsets[c + 1] += m.children_offsets[c];
-  m.children.resize(m.coarse.fine_to_coarse.size());
-  {
-    std::vector<int> cursor(m.children_offsets.begin(), m.children_offsets.end() - 1);
-    for (int v = 0; v < m.graph.vertex_count(); ++v) m.children[cursor[m.coarse.fine_to_coarse[v]]++] = v;
-  }
+  m.normal_moments.assign(m.coarse.vertex_count, NormalMoments());
+  for (int v = 0; v < m.graph.vertex_count(); ++v)
+    if (m.graph.points_of(v).empty())
+      m.normal_moments[m.coarse.fine_to_coarse[v]].add(m.graph.positions.row(v).transpose(),
+                                                       m.graph.normals.row(v).transpose());
   m.fidelity_scale = 1.0 / (options.epsilon * options.epsilon * m.graph.association_count());
   // W of Eq. 3 on the proxy, also on a coarser graph: a cut along strokes costs the same on both.
   double W = 0.0;
@@ -592,13 +598,12 @@ Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOp
   for (std::size_t i = 0; i < ks.size(); ++i) {
     const int k = *std::max_element(clusters[i].begin(), clusters[i].end()) + 1;
     members[i].resize(k);
-    for (int v = 0; v < m.graph.vertex_count(); ++v)
-      members[i][clusters[i][m.coarse.fine_to_coarse[v]]].push_back(v);
+    for (int vc = 0; vc < m.coarse.vertex_count; ++vc) members[i][clusters[i][vc]].push_back(vc);
     for (int c = 0; c < k; ++c) jobs.push_back({i, c});
   }
   std::vector<CandidatePtr> made(jobs.size());
   parallel_for(0, jobs.size(), options.threads, [&](std::size_t j) {
-    auto model = m.fit_vertices(members[jobs[j].first][jobs[j].second], options.max_degree, m.boosted_fit);
+    auto model = m.fit_members(members[jobs[j].first][jobs[j].second], options.max_degree, m.boosted_fit);
     if (model) made[j] = m.make_candidate(std::move(*model));
   });
   for (auto& c : made)

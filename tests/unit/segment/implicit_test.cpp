@@ -261,6 +261,53 @@ TEST(Implicit, FitsKnownQuadricsExactly) {
   EXPECT_GT(max_distance(fit(2, strokes, proxy, per_vertex), strokes.points), 0.02 * cases[2].size);
 }
 
+TEST(Implicit, NormalMomentsGiveTheFitOfTheirPoints) {
+  // Proxy points away from the moments' origin (PEARL's: the sketch's centre) and a small region
+  // (scale 0.2) far from it: the conversion to the model's frame must stay accurate.
+  for (const auto& [surface, size] : {std::pair{ellipsoid({-1.0, 2.0, 0.0}, {1.0, 0.6, 0.4}), 1.0},
+                                      std::pair{ellipsoid({0.9, 0.8, -0.7}, {0.1, 0.06, 0.04}), 0.1}}) {
+    const Samples strokes = sample(surface, 300, 21);
+    const Samples proxy = sample(surface, 400, 22);
+    // Two halves added up are the moments of the whole.
+    NormalMoments moments, second_half;
+    for (Eigen::Index i = 0; i < proxy.points.rows(); ++i)
+      (i < 150 ? moments : second_half).add(proxy.points.row(i), proxy.normals.row(i));
+    moments += second_half;
+    EXPECT_EQ(400, moments.count);
+    EXPECT_EQ(Eigen::Vector3d(proxy.points.colwise().minCoeff()), moments.lo);
+    EXPECT_EQ(Eigen::Vector3d(proxy.points.colwise().maxCoeff()), moments.hi);
+    for (int degree = 1; degree <= 4; ++degree) {
+      for (double length_unit : {0.0, 1.0}) {
+        FitOptions options;
+        options.length_unit = length_unit;
+        const ImplicitModel from_points = fit(degree, strokes, proxy, options);
+        const ImplicitModel from_moments = fit_implicit(degree, strokes.points, moments, options);
+        const std::string what = "degree " + std::to_string(degree) + ", unit " +
+                                 std::to_string(length_unit);
+        EXPECT_EQ(from_points.center, from_moments.center) << what;
+        EXPECT_EQ(from_points.scale, from_moments.scale) << what;
+        // The coefficients of the degree 3-4 fits are ill-conditioned (summing the same points
+        // in another order moves them by ~1e-8 relative): compare the functions, as distances.
+        for (const Samples* where : {&strokes, &proxy})
+          for (Eigen::Index i = 0; i < where->points.rows(); ++i) {
+            const Eigen::Vector3d x = where->points.row(i).transpose();
+            EXPECT_LT(std::abs(from_points.value(x) - from_moments.value(x)) /
+                          from_points.gradient(x).norm(),
+                      1e-9 * size)
+                << what;
+          }
+      }
+    }
+  }
+  // Only the summed form can use them; sums about different origins do not add.
+  FitOptions per_vertex;
+  per_vertex.alignment = NormalAlignment::PerVertex;
+  const Samples strokes = sample(ellipsoid({0, 0, 0}, {1, 1, 1}), 50, 23);
+  EXPECT_THROW(fit_implicit(2, strokes.points, NormalMoments(), per_vertex), Error);
+  NormalMoments elsewhere(Eigen::Vector3d(1, 0, 0));
+  EXPECT_THROW(NormalMoments() += elsewhere, Error);
+}
+
 TEST(Implicit, FitsPlanesWithEveryDegree) {
   const Eigen::Vector3d u = Eigen::Vector3d(1, 2, 0.5).normalized();
   const Eigen::Vector3d v = u.cross(Eigen::Vector3d(0.3, -1, 2)).normalized();
