@@ -34,7 +34,8 @@ double median_nearest_vertex_distance(const TriMesh& mesh, const Eigen::MatrixX3
 /// Least-Squares Mesh: each target point picks its nearest vertex; the new positions X minimise
 /// |L X|^2 + weight^2 sum_v |X_v - mean of v's targets|^2 with L the uniform graph Laplacian of
 /// the mesh's connectivity, so that the mesh passes near the targets and stays smooth between
-/// them (L X = 0 rows, as in the paper). Sparse Cholesky per round. Connectivity is unchanged.
+/// them (L X = 0 rows, as in the paper). Sparse LDL^T per round, METIS fill-reducing ordering.
+/// Connectivity is unchanged.
 /// @throws Error (Usage) for invalid options; Error (Processing) for an empty mesh or no targets,
 ///         or when the sparse system cannot be factorised; Error (Cancelled).
 void attract_to_points(TriMesh& mesh, const Eigen::MatrixX3d& targets, const AttractOptions& options,

@@ -77,6 +77,13 @@ class Remesher {
   }
 
   void flip_edges() {
+    // Valences kept up to date across the flips: OpenMesh's valence() walks the 1-ring.
+    std::vector<int> valence(mesh_.n_vertices());
+    std::vector<char> border(mesh_.n_vertices());
+    for (const auto v : mesh_.vertices()) {
+      valence[v.idx()] = static_cast<int>(mesh_.valence(v));
+      border[v.idx()] = mesh_.is_boundary(v);
+    }
     for (std::size_t i = 0; i < mesh_.n_edges(); ++i) {
       const EH e(static_cast<int>(i));
       if (mesh_.status(e).deleted() || mesh_.is_boundary(e)) continue;
@@ -85,8 +92,7 @@ class Remesher {
       const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
       const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
       auto dev = [&](VH v, int change) {
-        const int target = mesh_.is_boundary(v) ? 4 : 6;
-        return std::abs(static_cast<int>(mesh_.valence(v)) + change - target);
+        return std::abs(valence[v.idx()] + change - (border[v.idx()] ? 4 : 6));
       };
       const int before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
       const int after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
@@ -98,6 +104,10 @@ class Remesher {
       if (triangle_normal(pa, pd, pc).dot(n) <= 0.0 || triangle_normal(pd, pb, pc).dot(n) <= 0.0)
         continue;
       mesh_.flip(e);
+      --valence[a.idx()];
+      --valence[b.idx()];
+      ++valence[c.idx()];
+      ++valence[d.idx()];
       ++summary_.flips;
     }
   }
@@ -133,10 +143,12 @@ class Remesher {
   bool collapse_ok(HH h, double hi2) const {
     const VH gone = mesh_.from_vertex_handle(h), kept = mesh_.to_vertex_handle(h);
     if (mesh_.is_boundary(gone)) return false;
-    if (!mesh_.is_collapse_ok(h)) return false;
+    // The length test before OpenMesh's link-condition test: it is cheaper and refuses most
+    // candidates when coarsening a user proxy (same answer, the tests are independent).
     const Eigen::Vector3d target = point(mesh_, kept);
     for (const auto w : mesh_.vv_range(gone))
       if ((point(mesh_, w) - target).squaredNorm() > hi2) return false;
+    if (!mesh_.is_collapse_ok(h)) return false;
     // No face around `gone` (other than the two that vanish) may flip.
     for (const auto f : mesh_.vf_range(gone)) {
       std::array<Eigen::Vector3d, 3> q;

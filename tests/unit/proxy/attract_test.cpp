@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCholesky>
+
 #include <random>
 
 #include "surfacing/error.h"
@@ -103,6 +105,63 @@ TEST(Attract, NearestVertexDistanceMatchesBruteForce) {
     }
     std::nth_element(brute.begin(), brute.begin() + count / 2, brute.end());
     EXPECT_DOUBLE_EQ(median_nearest_vertex_distance(mesh, targets, 2), brute[count / 2]);
+  }
+}
+
+TEST(Attract, SolveMatchesADirectSolveAndIgnoresTheThreadCount) {
+  // One round on a 10k-vertex sphere pulled towards a larger sphere's strokes: the system of
+  // attract.h solved here with Eigen's default (AMD) ordering gives the same positions to
+  // rounding as the METIS-ordered solve, whose result has the same bits on 1, 2 or 5 threads.
+  const TriMesh sphere = testing::icosphere(5, 0.5);
+  const Sketch sketch = testing::sphere_sketch(0.6, 4);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& s : sketch.strokes)
+    for (std::size_t i = 0; i < s.points.size(); i += 4) points.push_back(s.points[i]);
+  Eigen::MatrixX3d targets(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) targets.row(static_cast<Eigen::Index>(i)) = points[i];
+
+  AttractOptions options;
+  options.rounds = 1;
+  const auto n = static_cast<Eigen::Index>(sphere.n_vertices());
+  const Eigen::MatrixX3d V = vertex_matrix(sphere);
+  std::vector<Eigen::Triplet<double>> lap;
+  for (const auto v : sphere.vertices()) {
+    lap.emplace_back(v.idx(), v.idx(), 1.0);
+    for (const auto w : v.vertices()) lap.emplace_back(v.idx(), w.idx(), -1.0 / sphere.valence(v));
+  }
+  Eigen::SparseMatrix<double> L(n, n);
+  L.setFromTriplets(lap.begin(), lap.end());
+  const double w2 = options.weight * options.weight, keep = 1e-8 * w2;
+  Eigen::SparseMatrix<double> A = (L.transpose() * L).pruned();
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixX3d sum = Eigen::MatrixX3d::Zero(n, 3);
+  for (Eigen::Index t = 0; t < targets.rows(); ++t) {  // nearest vertex, ties to the lower index
+    Eigen::Index nearest = 0;
+    (V.rowwise() - targets.row(t)).rowwise().squaredNorm().minCoeff(&nearest);
+    count[nearest] += 1.0;
+    sum.row(nearest) += targets.row(t);
+  }
+  Eigen::MatrixX3d rhs = keep * V;
+  for (Eigen::Index v = 0; v < n; ++v) {
+    A.coeffRef(v, v) += keep + (count[v] > 0 ? w2 : 0.0);
+    if (count[v] > 0) rhs.row(v) += w2 * sum.row(v) / count[v];
+  }
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> direct(A);
+  ASSERT_EQ(direct.info(), Eigen::Success);
+  const Eigen::MatrixX3d expected = direct.solve(rhs);
+
+  std::vector<TriMesh> results;
+  for (const unsigned threads : {1u, 2u, 5u}) {
+    options.threads = threads;
+    TriMesh mesh = sphere;
+    attract_to_points(mesh, targets, options);
+    results.push_back(mesh);
+  }
+  EXPECT_GT(vertex_matrix(results[0]).rowwise().norm().mean(), 0.55);  // pulled outwards
+  EXPECT_LT((vertex_matrix(results[0]) - expected).cwiseAbs().maxCoeff(), 1e-9);
+  for (const auto v : sphere.vertices()) {
+    ASSERT_EQ(results[1].point(v), results[0].point(v));
+    ASSERT_EQ(results[2].point(v), results[0].point(v));
   }
 }
 
