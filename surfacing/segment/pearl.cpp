@@ -551,7 +551,7 @@ Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOp
   m.graph = associate(normalised, mesh, ao);
   if (m.graph.association_count() == 0)
     throw Error::processing("no stroke could be associated with the proxy: is the proxy near the strokes?");
-  m.coarse = options.simplify ? simplify_graph(mesh, m.graph, ao, options.simplification)
+  m.coarse = options.simplify ? simplify_graph(std::move(mesh), m.graph, ao, options.simplification)
                               : identity_graph(m.graph);
   m.normal_moments.assign(m.coarse.vertex_count, NormalMoments());
   for (int v = 0; v < m.graph.vertex_count(); ++v)

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
+#include <bit>
+#include <cstdint>
 #include <vector>
-
 
 #include "surfacing/error.h"
 
@@ -18,31 +18,60 @@ int merged_valence(const TriMesh& mesh, const std::vector<int>& valence, TriMesh
   return valence[mesh.from_vertex_handle(h).idx()] + valence[mesh.to_vertex_handle(h).idx()] - 4;
 }
 
-// Halfedges by (resulting valence, halfedge index), smallest first, as one heap of pairs would
-// give them: one min-heap of indices per valence (valences are small), much less sifting.
+// Halfedges by (resulting valence, halfedge index), smallest first, repeats included: what one
+// heap of pairs would give. Per valence (valences are small) a count per halfedge index and two
+// levels of bit sets over the non-zero counts: push and pop in a few word operations (heaps of
+// the 01-0-1 proxy's ~500k halfedges spent 0.15 s sifting).
 class CollapseQueue {
  public:
-  explicit CollapseQueue(int max_valence) : buckets_(max_valence + 1) {}
+  CollapseQueue(int max_valence, int index_count)
+      : buckets_(static_cast<std::size_t>(max_valence) + 1), index_count_(index_count) {}
+
   void push(int valence, int index) {
     const int b = std::clamp(valence, 0, static_cast<int>(buckets_.size()) - 1);
-    buckets_[b].push_back(index);
-    std::push_heap(buckets_[b].begin(), buckets_[b].end(), std::greater<>());
+    Bucket& bucket = buckets_[b];
+    if (bucket.count.empty()) {
+      bucket.count.assign(static_cast<std::size_t>(index_count_), 0);
+      bucket.words.assign((bucket.count.size() + 63) / 64, 0);
+      bucket.summary.assign((bucket.words.size() + 63) / 64, 0);
+    }
+    if (bucket.count[index]++ == 0) {
+      const std::size_t w = static_cast<std::size_t>(index) / 64;
+      bucket.words[w] |= std::uint64_t{1} << (index % 64);
+      bucket.summary[w / 64] |= std::uint64_t{1} << (w % 64);
+      bucket.first = std::min(bucket.first, w / 64);
+    }
+    ++bucket.size;
     lowest_ = std::min(lowest_, b);
   }
+
   // Pops the smallest entry into (*valence, *index); false when empty.
   bool pop(int* valence, int* index) {
-    while (lowest_ < static_cast<int>(buckets_.size()) && buckets_[lowest_].empty()) ++lowest_;
+    while (lowest_ < static_cast<int>(buckets_.size()) && buckets_[lowest_].size == 0) ++lowest_;
     if (lowest_ == static_cast<int>(buckets_.size())) return false;
-    auto& b = buckets_[lowest_];
-    std::pop_heap(b.begin(), b.end(), std::greater<>());
+    Bucket& bucket = buckets_[lowest_];
+    while (bucket.summary[bucket.first] == 0) ++bucket.first;
+    const std::size_t w = bucket.first * 64 + std::countr_zero(bucket.summary[bucket.first]);
+    const int i = static_cast<int>(w * 64 + std::countr_zero(bucket.words[w]));
+    if (--bucket.count[i] == 0) {
+      bucket.words[w] &= ~(std::uint64_t{1} << (i % 64));
+      if (bucket.words[w] == 0) bucket.summary[w / 64] &= ~(std::uint64_t{1} << (w % 64));
+    }
+    --bucket.size;
     *valence = lowest_;
-    *index = b.back();
-    b.pop_back();
+    *index = i;
     return true;
   }
 
  private:
-  std::vector<std::vector<int>> buckets_;
+  struct Bucket {
+    std::vector<std::uint32_t> count;          // entries per halfedge index
+    std::vector<std::uint64_t> words, summary;  // bit i: count[i] > 0; bit w: words[w] != 0
+    std::size_t first = 0;                      // no summary word before it is non-zero
+    std::size_t size = 0;                       // entries
+  };
+  std::vector<Bucket> buckets_;
+  int index_count_;
   int lowest_ = 0;
 };
 
@@ -73,12 +102,11 @@ SimplifiedGraph identity_graph(const StrokeGraph& graph) {
   return s;
 }
 
-SimplifiedGraph simplify_graph(const TriMesh& proxy_in, const StrokeGraph& graph,
+SimplifiedGraph simplify_graph(TriMesh mesh, const StrokeGraph& graph,
                                const AssociationOptions& association,
                                const SimplifyOptions& options) {
   std::string why;
   if (!options.valid(&why)) throw Error::usage(why);
-  TriMesh mesh = proxy_in;
   mesh.garbage_collection();
   const int nv = static_cast<int>(mesh.n_vertices());
   if (nv != graph.vertex_count() || mesh.n_edges() != graph.edges.size())
@@ -97,7 +125,7 @@ SimplifiedGraph simplify_graph(const TriMesh& proxy_in, const StrokeGraph& graph
            merged_valence(mesh, valence, h) <= options.max_valence;
   };
 
-  CollapseQueue queue(options.max_valence);
+  CollapseQueue queue(options.max_valence, static_cast<int>(mesh.n_halfedges()));
   for (auto h : mesh.halfedges())
     if (candidate(h)) queue.push(merged_valence(mesh, valence, h), h.idx());
 
