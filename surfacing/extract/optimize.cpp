@@ -562,7 +562,7 @@ LaplacianSplit split_laplacians(const MeshEnergy& energy) {
 }
 
 /// E_mesh evaluated in one pass for L-BFGS. Cost is half the sum of squares, as in Ceres.
-class MeshEnergyFunction final : public ceres::FirstOrderFunction {
+class MeshEnergyFunction {
  public:
   MeshEnergyFunction(const MeshEnergy& energy, int n, const WorkerTeam& team)
       : energy_(energy), n_(n), team_(team), split_(split_laplacians(energy)),
@@ -581,10 +581,13 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
     for (std::size_t v = 0; v < static_cast<std::size_t>(n); ++v) first_term_[v + 1] += first_term_[v];
   }
 
-  int NumParameters() const override { return 3 * n_; }
-
-  bool Evaluate(const double* x, double* cost, double* gradient) const override {
+  /// Half E_mesh at x (3n values) into `cost`, and when `gradient` is not null its gradient
+  /// multiplied entry by entry by `gradient_scale` (3n values: in the per-vertex loop that
+  /// assembles it when no term is added after that loop, else in a pass of its own). False when
+  /// the cost is not finite.
+  bool evaluate(const double* x, double* cost, double* gradient, const double* gradient_scale) const {
     const Eigen::Map<const Eigen::VectorXd> X(x, 3 * n_);
+    const bool scale_in_loop = projected_.rows() == 0 && energy_.attract.empty() && energy_.plane_vertices.empty();
     // Projection: each term alone (in parallel), accumulated in a fixed order.
     team_.for_each(0, energy_.project.size(), [&](std::size_t i) {
       const ProjectionTerm& t = energy_.project[i];
@@ -603,7 +606,10 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         for (std::size_t i = first_term_[v]; i < first_term_[v + 1]; ++i)
           sum += project_values_[i] * project_gradients_[i];
-        G.segment<3>(3 * static_cast<Eigen::Index>(v)) = sum + product_.segment<3>(3 * static_cast<Eigen::Index>(v));
+        const Eigen::Index at = 3 * static_cast<Eigen::Index>(v);
+        const Eigen::Vector3d value = sum + product_.segment<3>(at);
+        if (scale_in_loop) G.segment<3>(at) = value.cwiseProduct(Eigen::Map<const Eigen::Vector3d>(gradient_scale + at));
+        else G.segment<3>(at) = value;
       });
     }
     if (projected_.rows() > 0) {
@@ -622,6 +628,11 @@ class MeshEnergyFunction final : public ceres::FirstOrderFunction {
       total += 0.5 * energy_.plane_weight * d * d;
       if (gradient) G.segment<3>(3 * v) += energy_.plane_weight * d * energy_.plane->normal;
     }
+    if (gradient && !scale_in_loop)
+      team_.for_each(0, static_cast<std::size_t>(n_), [&](std::size_t v) {
+        const Eigen::Index at = 3 * static_cast<Eigen::Index>(v);
+        G.segment<3>(at).array() *= Eigen::Map<const Eigen::Array3d>(gradient_scale + at);
+      });
     *cost = total;
     return std::isfinite(total);
   }
@@ -687,22 +698,30 @@ void for_vector_chunks(Eigen::Index n, const WorkerTeam& team, Body&& body) {
 }
 
 /// E_mesh in the variables y = x / s (Jacobi scaling: s = 1 / sqrt(Hessian diagonal)).
-class ScaledFunction final : public ceres::FirstOrderFunction {
+class ScaledFunction {
  public:
   ScaledFunction(const MeshEnergyFunction& f, Eigen::VectorXd scale, const WorkerTeam& team)
       : f_(f), scale_(std::move(scale)), x_(scale_.size()), team_(team) {}
-  int NumParameters() const override { return f_.NumParameters(); }
-  bool Evaluate(const double* y, double* cost, double* gradient) const override {
-    for_vector_chunks(scale_.size(), team_, [&](Eigen::Index lo, Eigen::Index size) {
-      x_.segment(lo, size) = scale_.segment(lo, size).cwiseProduct(Eigen::Map<const Eigen::VectorXd>(y + lo, size));
+  Eigen::Index size() const { return scale_.size(); }
+  /// E_mesh and its gradient (in y) at y.
+  bool evaluate(const double* y, double* cost, double* gradient) const {
+    for_vector_chunks(size(), team_, [&](Eigen::Index lo, Eigen::Index count) {
+      x_.segment(lo, count) = scale_.segment(lo, count).cwiseProduct(Eigen::Map<const Eigen::VectorXd>(y + lo, count));
     });
-    if (!f_.Evaluate(x_.data(), cost, gradient)) return false;
-    if (gradient)
-      for_vector_chunks(scale_.size(), team_, [&](Eigen::Index lo, Eigen::Index size) {
-        Eigen::Map<Eigen::VectorXd>(gradient + lo, size).array() *= scale_.segment(lo, size).array();
-      });
-    return true;
+    return f_.evaluate(x_.data(), cost, gradient, scale_.data());
   }
+  /// evaluate() at trial = y + step d, written to `trial` in the same pass as the positions.
+  bool evaluate_step(const double* y, double step, const double* d, double* trial, double* cost,
+                     double* gradient) const {
+    for_vector_chunks(size(), team_, [&](Eigen::Index lo, Eigen::Index count) {
+      for (Eigen::Index i = lo; i < lo + count; ++i) {
+        trial[i] = y[i] + step * d[i];
+        x_[i] = scale_[i] * trial[i];
+      }
+    });
+    return f_.evaluate(x_.data(), cost, gradient, scale_.data());
+  }
+
  private:
   const MeshEnergyFunction& f_;
   Eigen::VectorXd scale_;
@@ -730,12 +749,12 @@ struct LbfgsOutcome {
 /// (relative) over the last stall_window iterations (ours, see MeshSolver). `on_iteration(i)` runs
 /// after iteration i (0: the start) and may throw to stop.
 template <class Callback>
-LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, const MeshEnergyOptions& options,
+LbfgsOutcome minimize_lbfgs(const ScaledFunction& f, double* x0, const MeshEnergyOptions& options,
                             double gradient_tolerance, const WorkerTeam& team, Callback&& on_iteration) {
   const int rank = options.lbfgs_rank;
-  const Eigen::Index m = f.NumParameters();
+  const Eigen::Index m = f.size();
   const std::size_t chunks = (static_cast<std::size_t>(m) + kVectorChunk - 1) / kVectorChunk;
-  std::vector<double> partial(chunks);
+  std::vector<double> partial(chunks), partial_yy(chunks), partial_max(chunks);
   // sum over chunks of body(lo, hi), each chunk on one thread, added in chunk order.
   auto reduce = [&](auto&& body) {
     team.chunks(static_cast<std::size_t>(m), kVectorChunk,
@@ -760,17 +779,19 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, cons
   LbfgsOutcome out;
   double cost = 0.0;
   std::vector<double> costs;  // the cost after each iteration, 0 the start
-  if (!f.Evaluate(x.data(), &cost, g.data())) {
+  if (!f.evaluate(x.data(), &cost, g.data())) {
     out.usable = false;
     out.termination = "FAILURE: E_mesh is not finite at the start";
     return out;
   }
   costs.push_back(cost);
+  // The largest gradient entry (of g; then of each accepted step's gradient, in the pass that
+  // makes the new pair).
+  for_chunks([&](Eigen::Index lo, Eigen::Index size) { partial_max[static_cast<std::size_t>(lo) / kVectorChunk] = g.segment(lo, size).cwiseAbs().maxCoeff(); });
   on_iteration(0);
   auto slot = [&](int age) { return static_cast<std::size_t>((newest - age + rank) % rank); };
   for (int it = 1; it <= options.max_iterations; ++it) {
-    for_chunks([&](Eigen::Index lo, Eigen::Index size) { partial[static_cast<std::size_t>(lo) / kVectorChunk] = g.segment(lo, size).cwiseAbs().maxCoeff(); });
-    if (*std::max_element(partial.begin(), partial.end()) <= gradient_tolerance) {
+    if (*std::max_element(partial_max.begin(), partial_max.end()) <= gradient_tolerance) {
       out.converged = true;
       out.termination = "CONVERGENCE: gradient tolerance reached";
       return out;
@@ -814,10 +835,7 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, cons
     double step = 1.0, trial_cost = 0.0;
     bool accepted = false;
     for (int search = 0; search < 40 && !accepted; ++search) {
-      for_chunks([&](Eigen::Index lo, Eigen::Index size) {
-        trial.segment(lo, size) = x.segment(lo, size) + step * d.segment(lo, size);
-      });
-      const bool finite = f.Evaluate(trial.data(), &trial_cost, trial_gradient.data());
+      const bool finite = f.evaluate_step(x.data(), step, d.data(), trial.data(), &trial_cost, trial_gradient.data());
       if (finite && trial_cost <= cost + 1e-4 * step * slope) {
         accepted = true;
       } else {
@@ -830,17 +848,21 @@ LbfgsOutcome minimize_lbfgs(const ceres::FirstOrderFunction& f, double* x0, cons
       out.termination = "FAILURE: no step along the L-BFGS direction lowers E_mesh";
       return out;
     }
-    // The new pair (s, y) if it keeps H positive definite.
+    // The new pair (s, y) if it keeps H positive definite; y.y and the new gradient's largest
+    // entry in the same pass.
     const std::size_t next = static_cast<std::size_t>((newest + 1) % rank);
-    double yy = 0.0;
     const double sy = reduce([&](Eigen::Index lo, Eigen::Index hi) {
       auto s = S[next].segment(lo, hi - lo);
       auto y = Y[next].segment(lo, hi - lo);
       s = trial.segment(lo, hi - lo) - x.segment(lo, hi - lo);
       y = trial_gradient.segment(lo, hi - lo) - g.segment(lo, hi - lo);
+      const std::size_t c = static_cast<std::size_t>(lo) / kVectorChunk;
+      partial_yy[c] = y.squaredNorm();
+      partial_max[c] = trial_gradient.segment(lo, hi - lo).cwiseAbs().maxCoeff();
       return s.dot(y);
     });
-    yy = Y[next].squaredNorm();
+    double yy = 0.0;
+    for (double p : partial_yy) yy += p;
     if (sy > 1e-14 * yy) {
       newest = static_cast<int>(next);
       rho[next] = 1.0 / sy;
