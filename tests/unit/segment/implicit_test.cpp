@@ -151,7 +151,7 @@ TEST(Implicit, BatchDistancesEqualDistanceExactly) {
       m.scale = 0.5 + uniform(rng) * uniform(rng);
       m.coefficients.resize(monomial_count(degree));
       for (Eigen::Index k = 0; k < m.coefficients.size(); ++k) m.coefficients[k] = uniform(rng);
-      Eigen::MatrixX3d points(300, 3);
+      Eigen::MatrixX3d points(301, 3);  // not a multiple of the block size
       for (Eigen::Index p = 0; p < points.rows(); ++p)
         points.row(p) << 3 * uniform(rng), 3 * uniform(rng), 3 * uniform(rng);
       std::vector<double> batch(points.rows());
