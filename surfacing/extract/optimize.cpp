@@ -434,6 +434,68 @@ std::vector<double> conjugate_gradients(const WorkerTeam& team, const Eigen::Spa
   return X;
 }
 
+/// normal_matrix() on `team`: entry (j, i) of L^T L adds L_ti L_tj over the rows t in increasing
+/// order, starting from the first product, as Eigen's conservative sparse product; an entry
+/// missing from one operand of a sum counts as 0.0, as in Eigen's sums; A is symmetric, so its
+/// rows are its columns.
+RowMajorMatrix normal_matrix_on(const WorkerTeam& team, const Eigen::SparseMatrix<double>& L2,
+                                const Eigen::SparseMatrix<double>& L1, const Eigen::VectorXd& d) {
+  using ColMatrix = Eigen::SparseMatrix<double>;
+  const Eigen::Index n = d.size();
+  const RowMajorMatrix R2 = L2, R1 = L1;  // the terms' rows
+  constexpr Eigen::Index kBlock = 4096;
+  const std::size_t blocks = static_cast<std::size_t>((n + kBlock - 1) / kBlock);
+  std::vector<std::vector<int>> columns(blocks);
+  std::vector<std::vector<double>> values(blocks);
+  std::vector<int> counts(static_cast<std::size_t>(n));
+  team.for_each(0, blocks, [&](std::size_t b) {
+    std::vector<double> v2(static_cast<std::size_t>(n)), v1(static_cast<std::size_t>(n));
+    std::vector<unsigned char> in(static_cast<std::size_t>(n), 0);  // bit 1: in L2^T L2, bit 2: in L1^T L1
+    std::vector<int> touched;
+    const Eigen::Index begin = static_cast<Eigen::Index>(b) * kBlock, end = std::min(n, begin + kBlock);
+    for (Eigen::Index j = begin; j < end; ++j) {
+      touched.clear();
+      auto add = [&](const ColMatrix& L, const RowMajorMatrix& R, std::vector<double>& v, unsigned char bit) {
+        for (ColMatrix::InnerIterator t(L, j); t; ++t) {
+          const double y = t.value();
+          for (RowMajorMatrix::InnerIterator e(R, t.index()); e; ++e) {
+            const auto i = static_cast<std::size_t>(e.index());
+            if (!(in[i] & bit)) {
+              if (!in[i]) touched.push_back(static_cast<int>(i));
+              in[i] |= bit;
+              v[i] = e.value() * y;
+            } else {
+              v[i] += e.value() * y;
+            }
+          }
+        }
+      };
+      add(L2, R2, v2, 1);
+      add(L1, R1, v1, 2);
+      if (!in[static_cast<std::size_t>(j)]) touched.push_back(static_cast<int>(j));
+      std::sort(touched.begin(), touched.end());
+      for (int i : touched) {
+        const auto k = static_cast<std::size_t>(i);
+        const double sum = ((in[k] & 1) ? v2[k] : 0.0) + ((in[k] & 2) ? v1[k] : 0.0);
+        columns[b].push_back(i);
+        values[b].push_back(sum + (i == j ? d[j] : 0.0));
+        in[k] = 0;
+      }
+      counts[static_cast<std::size_t>(j)] = static_cast<int>(touched.size());
+    }
+  });
+  std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner;
+  std::vector<double> entries;
+  for (std::size_t j = 0; j < counts.size(); ++j) outer[j + 1] = outer[j] + counts[j];
+  inner.reserve(static_cast<std::size_t>(outer.back()));
+  entries.reserve(static_cast<std::size_t>(outer.back()));
+  for (std::size_t b = 0; b < blocks; ++b) {
+    inner.insert(inner.end(), columns[b].begin(), columns[b].end());
+    entries.insert(entries.end(), values[b].begin(), values[b].end());
+  }
+  return RowMajorMatrix(Eigen::Map<const RowMajorMatrix>(n, n, outer.back(), outer.data(), inner.data(), entries.data()));
+}
+
 }  // namespace
 
 template <int K>
@@ -453,6 +515,12 @@ template std::vector<double> block_conjugate_gradients<2>(const Eigen::SparseMat
 template std::vector<double> block_conjugate_gradients<3>(const Eigen::SparseMatrix<double, Eigen::RowMajor>&,
                                                           const Eigen::VectorXd&, const std::vector<double>&,
                                                           double, unsigned);
+
+RowMajorMatrix normal_matrix(const Eigen::SparseMatrix<double>& L2, const Eigen::SparseMatrix<double>& L1,
+                             const Eigen::VectorXd& d, unsigned threads) {
+  const WorkerTeam team(threads);
+  return normal_matrix_on(team, L2, L1, d);
+}
 
 }  // namespace detail
 
@@ -1036,7 +1104,8 @@ class GlobalStep {
     for (int s = 0; s < (plane_ ? 2 : 1); ++s) {
       const int c = s == 0 && plane_ ? 1 : 0;
       const Eigen::VectorXd d = s == 1 ? Eigen::VectorXd(diagonal + plane_diagonal) : diagonal;
-      matrix_[s] = normal_matrix(laplacian_rows(energy.regularize_2d, c), laplacian_rows(energy.regularize_1d, c), d, team);
+      matrix_[s] = detail::normal_matrix_on(team, laplacian_rows(energy.regularize_2d, c),
+                                            laplacian_rows(energy.regularize_1d, c), d);
       inverse_diagonal_[s] = matrix_[s].diagonal().cwiseMax(std::numeric_limits<double>::min()).cwiseInverse();
     }
   }
@@ -1088,70 +1157,6 @@ class GlobalStep {
     Eigen::SparseMatrix<double> L(static_cast<int>(terms.size()), n_);
     L.setFromTriplets(entries.begin(), entries.end());
     return L;
-  }
-
-  /// A = (L2^T L2 + L1^T L1) + diag(d), row by row on the team (the serial sparse product took
-  /// 0.1 s on 01-0-1). The same operations in the same order as Eigen's conservative sparse
-  /// product, sum and diagonal update that built it before, so the same bits: entry (j, i) of
-  /// L^T L adds L_ti L_tj over the terms t in increasing order, starting from the first
-  /// product; an entry missing from one operand of a sum counts as 0.0; A is symmetric, so its
-  /// rows are its columns.
-  static RowMatrix normal_matrix(const Eigen::SparseMatrix<double>& L2, const Eigen::SparseMatrix<double>& L1,
-                                 const Eigen::VectorXd& d, const WorkerTeam& team) {
-    using ColMatrix = Eigen::SparseMatrix<double>;
-    const Eigen::Index n = d.size();
-    const RowMatrix R2 = L2, R1 = L1;  // the terms' rows
-    constexpr Eigen::Index kBlock = 4096;
-    const std::size_t blocks = static_cast<std::size_t>((n + kBlock - 1) / kBlock);
-    std::vector<std::vector<int>> columns(blocks);
-    std::vector<std::vector<double>> values(blocks);
-    std::vector<int> counts(static_cast<std::size_t>(n));
-    team.for_each(0, blocks, [&](std::size_t b) {
-      std::vector<double> v2(static_cast<std::size_t>(n)), v1(static_cast<std::size_t>(n));
-      std::vector<unsigned char> in(static_cast<std::size_t>(n), 0);  // bit 1: in L2^T L2, bit 2: in L1^T L1
-      std::vector<int> touched;
-      const Eigen::Index begin = static_cast<Eigen::Index>(b) * kBlock, end = std::min(n, begin + kBlock);
-      for (Eigen::Index j = begin; j < end; ++j) {
-        touched.clear();
-        auto add = [&](const ColMatrix& L, const RowMatrix& R, std::vector<double>& v, unsigned char bit) {
-          for (ColMatrix::InnerIterator t(L, j); t; ++t) {
-            const double y = t.value();
-            for (RowMatrix::InnerIterator e(R, t.index()); e; ++e) {
-              const auto i = static_cast<std::size_t>(e.index());
-              if (!(in[i] & bit)) {
-                if (!in[i]) touched.push_back(static_cast<int>(i));
-                in[i] |= bit;
-                v[i] = e.value() * y;
-              } else {
-                v[i] += e.value() * y;
-              }
-            }
-          }
-        };
-        add(L2, R2, v2, 1);
-        add(L1, R1, v1, 2);
-        if (!in[static_cast<std::size_t>(j)]) touched.push_back(static_cast<int>(j));
-        std::sort(touched.begin(), touched.end());
-        for (int i : touched) {
-          const auto k = static_cast<std::size_t>(i);
-          const double sum = ((in[k] & 1) ? v2[k] : 0.0) + ((in[k] & 2) ? v1[k] : 0.0);
-          columns[b].push_back(i);
-          values[b].push_back(sum + (i == j ? d[j] : 0.0));
-          in[k] = 0;
-        }
-        counts[static_cast<std::size_t>(j)] = static_cast<int>(touched.size());
-      }
-    });
-    std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner;
-    std::vector<double> entries;
-    for (std::size_t j = 0; j < counts.size(); ++j) outer[j + 1] = outer[j] + counts[j];
-    inner.reserve(static_cast<std::size_t>(outer.back()));
-    entries.reserve(static_cast<std::size_t>(outer.back()));
-    for (std::size_t b = 0; b < blocks; ++b) {
-      inner.insert(inner.end(), columns[b].begin(), columns[b].end());
-      entries.insert(entries.end(), values[b].begin(), values[b].end());
-    }
-    return RowMatrix(Eigen::Map<const RowMatrix>(n, n, outer.back(), outer.data(), inner.data(), entries.data()));
   }
 
   int n_;

@@ -295,6 +295,49 @@ TEST(OptimizeMesh, RejectsBadInput) {
   EXPECT_THROW(optimize_mesh(m, {plane_model({0, 0, 1}, 0)}, {}, stall), Error);
 }
 
+TEST(NormalMatrix, IsLTransposeLPlusTheDiagonalBitForBitWhateverTheThreadCount) {
+  // The uniform Laplacian rows of a 90 x 100 grid (9000 vertices: three row blocks), weighted,
+  // some empty, a few with a repeated vertex; 1D rows along one grid line.
+  const int w = 90, h = 100, n = w * h;
+  std::vector<Eigen::Triplet<double>> rows_2d, rows_1d;
+  for (int v = 0; v < n; ++v) {
+    if (v % 17 == 5) continue;
+    const int x = v % w, y = v / w;
+    std::vector<int> ring;
+    if (x > 0) ring.push_back(v - 1);
+    if (x + 1 < w) ring.push_back(v + 1);
+    if (y > 0) ring.push_back(v - w);
+    if (y + 1 < h) ring.push_back(v + w);
+    if (v % 101 == 3) ring.push_back(ring.front());
+    const double s = std::sqrt(100.0 * (0.5 + 0.5 * std::sin(0.37 * v)));
+    rows_2d.emplace_back(v, v, s);
+    for (int u : ring) rows_2d.emplace_back(v, u, -s / static_cast<double>(ring.size()));
+  }
+  for (int x = 1; x + 1 < w; ++x) {
+    const int v = 40 * w + x;
+    rows_1d.emplace_back(v, v, std::sqrt(500.0));
+    for (int u : {v - 1, v + 1}) rows_1d.emplace_back(v, u, -std::sqrt(500.0) / 2.0);
+  }
+  Eigen::SparseMatrix<double> L2(n, n), L1(n, n);
+  L2.setFromTriplets(rows_2d.begin(), rows_2d.end());
+  L1.setFromTriplets(rows_1d.begin(), rows_1d.end());
+  Eigen::VectorXd d(n);
+  for (int v = 0; v < n; ++v) d[v] = 1.0 / (1 + v % 3);
+  Eigen::SparseMatrix<double> expected = L2.transpose() * L2 + L1.transpose() * L1;
+  expected += Eigen::SparseMatrix<double>(d.asDiagonal());
+  const detail::RowMajorMatrix rows(expected);
+  for (unsigned threads : {1u, 2u, 3u}) {
+    const detail::RowMajorMatrix A = detail::normal_matrix(L2, L1, d, threads);
+    ASSERT_EQ(A.rows(), n);
+    ASSERT_EQ(A.nonZeros(), rows.nonZeros()) << threads << " threads";
+    for (int r = 0; r <= n; ++r) ASSERT_EQ(A.outerIndexPtr()[r], rows.outerIndexPtr()[r]) << "row " << r;
+    for (Eigen::Index k = 0; k < A.nonZeros(); ++k) {
+      ASSERT_EQ(A.innerIndexPtr()[k], rows.innerIndexPtr()[k]) << "entry " << k;
+      ASSERT_EQ(A.valuePtr()[k], rows.valuePtr()[k]) << "entry " << k << ", " << threads << " threads";
+    }
+  }
+}
+
 TEST(BlockConjugateGradients, SolvesEachColumnAsIfAloneWhateverTheThreadCount) {
   // A = 100 L^T L + D for the graph Laplacian L of a 600-vertex path: stiff and SPD, with the
   // 2-ring pattern of the global step's matrix (condition ~1e4).
