@@ -152,6 +152,42 @@ namespace sketchsurf {
 ///   evaluation forced inline into taubin() (107 ns instead of 44); local_global_iterations = 3
 ///   with the stall test (01-0-1 stops at 280 iterations instead of 248, the same time; E_mesh
 ///   hat +0.9%, box -0.6%).
+///
+/// Session 5 (issue 4: 01-0-1's whole run under 10 s; extraction alone on the cached
+/// segmentations of main ccd69cf, the machine shared with the lead's runs at load 1.6-4.5, so
+/// process and main-thread CPU, interleaved runs, medians of 3). 01-0-1 (89.3k vertices) ran to
+/// the cap (300 L-BFGS iterations, 363 evaluations): L-BFGS 3.4 s of its 4.5 s (evaluations 2.3,
+/// of them the projection terms 1.8; vector work 1.1), local-global start 0.74 (its matrix 0.12
+/// serial), seams 0.16. Kept, each with the same output bit for bit on hat, chair, 01-0-1,
+/// teapot and box, and on a mirrored half sheet with seams and attraction targets (1-3 threads,
+/// against the code before the session):
+/// - the table evaluation's per-monomial step always inlined: GCC 12 had left its 1- and 4-row
+///   instances out of line (24% of the extraction's perf samples), 01-0-1's terms 81 -> 35 ns;
+/// - L-BFGS passes fused (Jacobi scaling of the gradient where it is assembled, trial point and
+///   unscaled positions together, y.y and the largest gradient entry with s.y): 3 passes over
+///   3n values fewer per iteration, one of them serial;
+/// - the global step's matrix row by row on the team (detail::normal_matrix; 0.19 -> 0.11 s on
+///   one thread, the same bits as Eigen's product, tested);
+/// - base -> after, process CPU / main-thread CPU (s): 01-0-1 7.10 / 3.76 -> 4.79 / 2.58, hat
+///   2.80 / 1.56 -> 2.14 / 1.20, chair 1.02 / 0.56 -> 0.94 / 0.52, teapot 0.79 / 0.44 -> 0.60 /
+///   0.34, box 1.48 / 0.81 -> 1.15 / 0.63; 01-0-1 wall 4.5-4.6 -> 3.2-3.4 s at load ~1.6-2.3.
+///   Quality unchanged (same bits): E_mesh 1.1542, 0.28738, 0.15246, 0.065991, 0.4803; median
+///   stroke distance 3.09e-3, 1.98e-3, 2.79e-3, 2.41e-3, 0.64e-3, p95 0.0193, 0.0131, 0.0165,
+///   0.0192, 0.0037 (of the diagonal); smallest angles (1st percentile, 01-0-1) 0.77 deg.
+/// Tried and dropped:
+/// - workers spinning 50 us before sleeping between loops (WorkerTeam): with another process on
+///   one of the two cores, 01-0-1 took 15% more CPU and wall (the spinning thread holds the core
+///   the other one needs); not measurable on an idle machine during the session;
+/// - projection terms and the Laplacian residuals in one team loop, S^T r in the gradient loop
+///   (one loop and one 3n buffer fewer per evaluation): CPU 5.04 -> 5.13 s, not faster;
+/// - build_energy's Laplacian terms per block of vertices on the team: the same time on one
+///   thread, no difference at load 3 (0.04 s serial per call, two calls);
+/// - taubin() compiled for AVX as a target clone: 36-38 ns instead of 34-36;
+/// - an earlier stop on 01-0-1: 250 iterations E_mesh +6% (200: +19%), stroke distances within
+///   1%, smallest angles as good (1st percentile 0.78 / 0.85 deg instead of 0.77): not taken.
+/// Left (01-0-1): the projection terms (~25% of the CPU) and the two-loop recursion (~23%: 17
+/// passes, 16 pair vectors of 2.1 MB, memory bound), the global steps' conjugate gradients
+/// (~14%); serial: building the seamed OpenMesh mesh (0.08 s) and build_energy (2 x 0.04 s).
 enum class MeshSolver {
   SparseCholesky,  ///< Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse)
   ConjugateGradients,  ///< Levenberg-Marquardt, CGNR with a Jacobi preconditioner
