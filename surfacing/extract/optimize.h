@@ -174,10 +174,14 @@ namespace sketchsurf {
 ///   Quality unchanged (same bits): E_mesh 1.1542, 0.28738, 0.15246, 0.065991, 0.4803; median
 ///   stroke distance 3.09e-3, 1.98e-3, 2.79e-3, 2.41e-3, 0.64e-3, p95 0.0193, 0.0131, 0.0165,
 ///   0.0192, 0.0037 (of the diagonal); smallest angles (1st percentile, 01-0-1) 0.77 deg.
+///   extract_bench (planes only, little to gain): E_mesh 0.00828 / 0.01865 as before, main-thread
+///   CPU 175 / 797 ms at load ~4, peak RSS 116 MB.
 /// Tried and dropped:
-/// - workers spinning 50 us before sleeping between loops (WorkerTeam): with another process on
-///   one of the two cores, 01-0-1 took 15% more CPU and wall (the spinning thread holds the core
-///   the other one needs); not measurable on an idle machine during the session;
+/// - workers spinning 50 us before sleeping between loops (WorkerTeam; ~8000 loops on 01-0-1):
+///   with another process on one of the two cores, 01-0-1 took 15% more CPU and wall (the
+///   spinning thread holds the core the other one needs); yielding instead of pausing while
+///   spinning: the same wall at load ~4, CPU +8%. Not measurable on an idle machine during the
+///   session, where the wake-ups it saves should matter most;
 /// - projection terms and the Laplacian residuals in one team loop, S^T r in the gradient loop
 ///   (one loop and one 3n buffer fewer per evaluation): CPU 5.04 -> 5.13 s, not faster;
 /// - build_energy's Laplacian terms per block of vertices on the team: the same time on one
