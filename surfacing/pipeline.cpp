@@ -71,6 +71,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"segment.max_degree", setter([](Params& p) -> auto& { return p.segment.max_degree; })},
       {"segment.merges_per_iteration", setter([](Params& p) -> auto& { return p.segment.merges_per_iteration; })},
       {"segment.max_iterations", setter([](Params& p) -> auto& { return p.segment.max_iterations; })},
+      {"segment.min_gain", setter([](Params& p) -> auto& { return p.segment.min_gain; })},
       {"segment.restarts", setter([](Params& p) -> auto& { return p.segment.restarts; })},
       {"segment.seed", setter([](Params& p) -> auto& { return p.segment.seed; })},
       {"segment.simplify", setter([](Params& p) -> auto& { return p.segment.simplify; })},

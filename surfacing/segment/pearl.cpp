@@ -175,6 +175,7 @@ bool SegmentOptions::valid(std::string* why) const {
     return fail("segment max_degree must be in 1..4");
   if (merges_per_iteration < 0) return fail("segment merges_per_iteration must be >= 0");
   if (max_iterations < 1) return fail("segment max_iterations must be at least 1");
+  if (!(min_gain >= 0.0 && min_gain < 1.0)) return fail("segment min_gain must be in [0, 1)");
   if (restarts < 1) return fail("segment restarts must be at least 1");
   if (expansion_sweeps < 1) return fail("segment expansion_sweeps must be at least 1");
   if (!non_negative(penalty_factor)) return fail("segment penalty_factor must be >= 0");
@@ -417,7 +418,8 @@ struct Segmenter::Impl {
       if (refit(s, cache)) failed.clear();
       std::sort(failed.begin(), failed.end());
       progress.iteration_done(run);
-      if (stable) {
+      const bool small_gain = it > 0 && r.history[it - 1] - ex.energy < options.min_gain * r.history[it - 1];
+      if (stable || small_gain) {
         r.converged = true;
         break;
       }

@@ -46,6 +46,8 @@ TEST(SegmentOptions, RejectsInvalidValues) {
   EXPECT_TRUE(broken([](SegmentOptions& o) { o.cluster_counts.clear(); }));
   EXPECT_TRUE(broken([](SegmentOptions& o) { o.max_degree = 5; }));
   EXPECT_TRUE(broken([](SegmentOptions& o) { o.restarts = 0; }));
+  EXPECT_TRUE(broken([](SegmentOptions& o) { o.min_gain = -0.1; }));
+  EXPECT_TRUE(broken([](SegmentOptions& o) { o.min_gain = 1.0; }));
   EXPECT_TRUE(broken([](SegmentOptions& o) { o.association.uncrossed_weight = 0; }));
   SegmentOptions bad;
   bad.max_iterations = 0;
@@ -126,6 +128,29 @@ TEST(Pearl, EnergyNeverIncreasesAndBestRestartIsKept) {
   // Labels are compacted: every model is used.
   std::set<int> used(s.labels.begin(), s.labels.end());
   EXPECT_EQ(used.size(), s.models.size());
+}
+
+TEST(Pearl, RunsStopWhenAStepGainsLessThanMinGain) {
+  // With min_gain 0 the kept run goes on until its labeling is stable; with a large min_gain it
+  // stops at the first step that lowers the energy by less than that fraction, and not before.
+  const Sketch sketch = testing::cylinder_sketch();
+  const TriMesh proxy = testing::rounded_cylinder_mesh(3, 0.5, 0.5, 0.04);
+  SegmentOptions all = small_options();
+  all.min_gain = 0.0;
+  all.restarts = 1;
+  SegmentOptions early = all;
+  early.min_gain = 0.2;
+  const Segmentation a = segment(sketch, proxy, all);
+  const Segmentation b = segment(sketch, proxy, early);
+  const auto& h = b.summary.energy_history;
+  ASSERT_GE(h.size(), 2u);
+  EXPECT_LT(h.size(), a.summary.energy_history.size());
+  EXPECT_TRUE(b.summary.converged);
+  EXPECT_LT(h[h.size() - 2] - h.back(), early.min_gain * h[h.size() - 2]);
+  for (std::size_t i = 1; i + 1 < h.size(); ++i)
+    EXPECT_GE(h[i - 1] - h[i], early.min_gain * h[i - 1]) << "step " << i;
+  // Same steps up to the stop.
+  for (std::size_t i = 0; i < h.size(); ++i) EXPECT_EQ(h[i], a.summary.energy_history[i]);
 }
 
 TEST(Pearl, SimplificationDoesNotChangeTheResult) {
