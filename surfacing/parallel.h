@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <mutex>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace sketchsurf {
@@ -35,13 +38,20 @@ class FirstError {
   std::exception_ptr first_;
 };
 
+/// Calls fn(i) for i in chunk w of [begin, end) split into `parts` contiguous chunks: the chunks
+/// of parallel_for() and WorkerTeam::for_each().
+template <class Fn>
+void for_chunk(std::size_t begin, std::size_t end, std::size_t parts, std::size_t w, Fn& fn) {
+  const std::size_t n = end - begin;
+  for (std::size_t i = begin + n * w / parts; i < begin + n * (w + 1) / parts; ++i) fn(i);
+}
+
 /// Calls fn(i) for every i in [begin, end) on up to `threads` threads (0 = all), in contiguous
 /// chunks. The first exception thrown by any call (FirstError) is rethrown on the calling thread.
 template <class Fn>
 void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn) {
   if (end <= begin) return;
-  const std::size_t n = end - begin;
-  const std::size_t workers = std::min<std::size_t>(resolve_threads(threads), n);
+  const std::size_t workers = std::min<std::size_t>(resolve_threads(threads), end - begin);
   if (workers <= 1) {
     for (std::size_t i = begin; i < end; ++i) fn(i);
     return;
@@ -50,9 +60,8 @@ void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn)
   std::vector<std::thread> pool;
   pool.reserve(workers - 1);
   auto run_chunk = [&](std::size_t w) {
-    const std::size_t lo = begin + n * w / workers, hi = begin + n * (w + 1) / workers;
     try {
-      for (std::size_t i = lo; i < hi; ++i) fn(i);
+      for_chunk(begin, end, workers, w, fn);
     } catch (...) {
       error.keep(std::current_exception());
     }
@@ -63,14 +72,101 @@ void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn)
   error.rethrow();
 }
 
-/// Calls fn(c, lo, hi) for the fixed chunks c of [0, n), each [lo, hi) of `chunk` indices (the
-/// last one shorter), on up to `threads` threads. The chunks do not depend on the thread count:
-/// sums kept per chunk and added in chunk order are the same whatever the threads.
-template <class Fn>
-void parallel_chunks(std::size_t n, std::size_t chunk, unsigned threads, Fn&& fn) {
-  parallel_for(0, (n + chunk - 1) / chunk, threads,
-               [&](std::size_t c) { fn(c, c * chunk, std::min(n, (c + 1) * chunk)); });
-}
+/// Worker threads kept for many loops (an extraction runs thousands, where parallel_for() would
+/// start and join threads at each: ~50 us of CPU apiece). for_each() runs parallel_for()'s chunks,
+/// so the same results whatever the thread count; the calling thread runs chunk 0, the others wait
+/// on a condition variable between loops. The first exception thrown in a loop (FirstError) is
+/// rethrown on the calling thread once every chunk has ended. One loop at a time.
+class WorkerTeam {
+ public:
+  /// `threads` as for parallel_for() (0 = all).
+  explicit WorkerTeam(unsigned threads) : size_(resolve_threads(threads)) {
+    for (unsigned w = 1; w < size_; ++w) workers_.emplace_back([this, w] { serve(w); });
+  }
+  ~WorkerTeam() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& t : workers_) t.join();
+  }
+  WorkerTeam(const WorkerTeam&) = delete;
+  WorkerTeam& operator=(const WorkerTeam&) = delete;
+
+  /// parallel_for(begin, end, threads, fn) on the team.
+  template <class Fn>
+  void for_each(std::size_t begin, std::size_t end, Fn&& fn) const {
+    if (end <= begin) return;
+    const std::size_t parts = std::min<std::size_t>(size_, end - begin);
+    run(parts, [&](std::size_t w) { for_chunk(begin, end, parts, w, fn); });
+  }
+
+  /// Calls fn(c, lo, hi) for the fixed chunks c of [0, n), each [lo, hi) of `chunk` indices (the
+  /// last one shorter). The chunks do not depend on the thread count: sums kept per chunk and
+  /// added in chunk order are the same whatever the threads.
+  template <class Fn>
+  void chunks(std::size_t n, std::size_t chunk, Fn&& fn) const {
+    for_each(0, (n + chunk - 1) / chunk, [&](std::size_t c) { fn(c, c * chunk, std::min(n, (c + 1) * chunk)); });
+  }
+
+ private:
+  // part(w) for w in [0, parts), part 0 on the calling thread.
+  template <class Part>
+  void run(std::size_t parts, const Part& part) const {
+    if (parts <= 1) return part(0);
+    FirstError error;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      job_ = [](const void* p, std::size_t w) { (*static_cast<const Part*>(p))(w); };
+      context_ = &part;
+      error_ = &error;
+      parts_ = parts;
+      pending_ = parts - 1;
+      ++generation_;
+    }
+    wake_.notify_all();
+    try {
+      part(0);
+    } catch (...) {
+      error.keep(std::current_exception());
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [&] { return pending_ == 0; });
+    error.rethrow();
+  }
+
+  void serve(std::size_t w) const {
+    std::uint64_t seen = 0;
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+      if (w >= parts_) continue;
+      lock.unlock();
+      try {
+        job_(context_, w);
+      } catch (...) {
+        error_->keep(std::current_exception());
+      }
+      lock.lock();
+      if (--pending_ == 0) done_.notify_one();
+    }
+  }
+
+  unsigned size_;
+  std::vector<std::thread> workers_;
+  // The current loop, guarded by mutex_ (workers read it after a new generation).
+  mutable std::mutex mutex_;
+  mutable std::condition_variable wake_, done_;
+  mutable void (*job_)(const void*, std::size_t) = nullptr;
+  mutable const void* context_ = nullptr;
+  mutable FirstError* error_ = nullptr;
+  mutable std::size_t parts_ = 0, pending_ = 0;
+  mutable std::uint64_t generation_ = 0;
+  bool stop_ = false;
+};
 
 /// Calls fn(i) for every i in [0, n) on up to `threads` threads (0 = all), each thread taking the
 /// next index when it is free, the calling thread one of them: for few calls of uneven length.

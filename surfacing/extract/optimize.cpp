@@ -5,10 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <condition_variable>
-#include <cstdint>
-#include <mutex>
-#include <thread>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -22,103 +18,6 @@
 #include "surfacing/parallel.h"
 
 namespace sketchsurf {
-
-namespace {
-
-/// Worker threads kept for a whole optimisation, serving the loops that parallel_for() and
-/// parallel_chunks() would run: the same contiguous chunks (hence the same results whatever the
-/// thread count), without starting and joining threads at every loop (see MeshSolver).
-class WorkerTeam {
- public:
-  explicit WorkerTeam(unsigned threads) : size_(std::max(1u, threads)), errors_(size_) {
-    for (unsigned w = 1; w < size_; ++w) workers_.emplace_back([this, w] { serve(w); });
-  }
-  ~WorkerTeam() {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    for (std::thread& t : workers_) t.join();
-  }
-  WorkerTeam(const WorkerTeam&) = delete;
-  WorkerTeam& operator=(const WorkerTeam&) = delete;
-
-  /// parallel_for(begin, end, threads, fn) on the team.
-  template <class Fn>
-  void for_each(std::size_t begin, std::size_t end, Fn&& fn) const {
-    if (end <= begin) return;
-    const std::size_t n = end - begin, parts = std::min<std::size_t>(size_, n);
-    const auto chunk = [&](std::size_t w) {
-      for (std::size_t i = begin + n * w / parts; i < begin + n * (w + 1) / parts; ++i) fn(i);
-    };
-    run(parts, chunk);
-  }
-  /// parallel_chunks(n, chunk, threads, fn) on the team.
-  template <class Fn>
-  void chunks(std::size_t n, std::size_t chunk, Fn&& fn) const {
-    for_each(0, (n + chunk - 1) / chunk, [&](std::size_t c) { fn(c, c * chunk, std::min(n, (c + 1) * chunk)); });
-  }
-
- private:
-  // chunk(w) for w in [0, parts), chunk 0 on the calling thread; rethrows the first error.
-  template <class Chunk>
-  void run(std::size_t parts, const Chunk& chunk) const {
-    if (parts <= 1) return chunk(0);
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      job_ = [](const void* c, std::size_t w) { (*static_cast<const Chunk*>(c))(w); };
-      context_ = &chunk;
-      parts_ = parts;
-      pending_ = parts - 1;
-      ++generation_;
-    }
-    wake_.notify_all();
-    try {
-      chunk(0);
-    } catch (...) {
-      errors_[0] = std::current_exception();
-    }
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [&] { return pending_ == 0; });
-    std::exception_ptr first;
-    for (std::exception_ptr& e : errors_)
-      if (!first) first = std::exchange(e, nullptr);
-      else e = nullptr;
-    if (first) std::rethrow_exception(first);
-  }
-  void serve(std::size_t w) const {
-    std::uint64_t seen = 0;
-    std::unique_lock<std::mutex> lock(mutex_);
-    for (;;) {
-      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-      if (stop_) return;
-      seen = generation_;
-      if (w >= parts_) continue;
-      lock.unlock();
-      try {
-        job_(context_, w);
-      } catch (...) {
-        errors_[w] = std::current_exception();
-      }
-      lock.lock();
-      if (--pending_ == 0) done_.notify_one();
-    }
-  }
-
-  unsigned size_;
-  std::vector<std::thread> workers_;
-  mutable std::mutex mutex_;
-  mutable std::condition_variable wake_, done_;
-  mutable void (*job_)(const void*, std::size_t) = nullptr;
-  mutable const void* context_ = nullptr;
-  mutable std::size_t parts_ = 0, pending_ = 0;
-  mutable std::uint64_t generation_ = 0;
-  mutable std::vector<std::exception_ptr> errors_;
-  bool stop_ = false;
-};
-
-}  // namespace
 
 bool MeshEnergyOptions::valid(std::string* why) const {
   auto fail = [&](const char* what) {

@@ -136,7 +136,7 @@ namespace sketchsurf {
 ///   noise (main-thread CPU 334 -> 303 ms, 983 -> 1039 ms); peak RSS 117 MB; all 14 `data`
 ///   surface tests pass;
 /// - the loops of an optimisation (~25 per L-BFGS iteration, 3 per conjugate-gradient iteration,
-///   ~7500 on 01-0-1) run on a WorkerTeam (optimize.cpp) whose threads wait on a condition
+///   ~7500 on 01-0-1) run on a WorkerTeam (parallel.h) whose threads wait on a condition
 ///   variable between loops, where parallel_for() starts and joins threads at every loop (~50 us
 ///   of CPU each: teapot's extraction took 0.70 s of CPU on one thread, 0.95 s on two). The same
 ///   chunks, so the same output bit for bit (all five sketches); after the changes above ->

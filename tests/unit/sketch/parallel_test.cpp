@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
@@ -53,6 +54,33 @@ TEST(ParallelLoops, EveryIndexOnceWhateverTheThreadCount) {
   }
 }
 
+TEST(ParallelLoops, WorkerTeamRunsParallelForChunksLoopAfterLoop) {
+  // Each index once, on the thread parallel_for() gives it (the same chunks), for many loops of
+  // different lengths on one team; chunks() covers [0, n) in fixed chunks.
+  for (unsigned threads : {1u, 2u, 3u}) {
+    const WorkerTeam team(threads);
+    for (std::size_t n : {0u, 1u, 2u, 5u, 101u}) {
+      std::vector<std::thread::id> ours(n), reference(n);
+      std::vector<int> hits(n, 0);
+      team.for_each(0, n, [&](std::size_t i) {
+        ++hits[i];
+        ours[i] = std::this_thread::get_id();
+      });
+      parallel_for(0, n, threads, [&](std::size_t i) { reference[i] = std::this_thread::get_id(); });
+      EXPECT_EQ(std::vector<int>(n, 1), hits) << threads << " threads, n " << n;
+      for (std::size_t i = 1; i < n; ++i)  // same chunk boundaries
+        EXPECT_EQ(ours[i] == ours[i - 1], reference[i] == reference[i - 1]) << threads << " threads, n " << n;
+    }
+    std::vector<int> covered(10, 0);
+    team.chunks(10, 4, [&](std::size_t c, std::size_t lo, std::size_t hi) {
+      EXPECT_EQ(lo, 4 * c);
+      EXPECT_EQ(hi, std::min<std::size_t>(10, 4 * c + 4));
+      for (std::size_t i = lo; i < hi; ++i) ++covered[i];
+    });
+    EXPECT_EQ(std::vector<int>(10, 1), covered);
+  }
+}
+
 TEST(ParallelLoops, RethrowTheFirstFailureNotTheRunsItCancelled) {
   // The failing call is on the second thread's share in both loops: the calling thread's own
   // (later) "cancelled" must not hide it.
@@ -63,6 +91,12 @@ TEST(ParallelLoops, RethrowTheFirstFailureNotTheRunsItCancelled) {
   }
   FailingRuns chunks{1};
   EXPECT_EQ("cause", message_of([&] { parallel_for(0, 2, 2, std::ref(chunks)); }));
+  const WorkerTeam team(2);
+  FailingRuns team_runs{1};
+  EXPECT_EQ("cause", message_of([&] { team.for_each(0, 2, std::ref(team_runs)); }));
+  std::vector<int> hits(4, 0);  // the team still works after a failure
+  team.for_each(0, 4, [&](std::size_t i) { ++hits[i]; });
+  EXPECT_EQ(std::vector<int>(4, 1), hits);
 }
 
 }  // namespace
