@@ -32,6 +32,18 @@ const Expected kExpected[] = {
     {"vns/box.obj", 12, 2922},             {"vns/car_1.obj", 69, 3155},
     {"vns/doghead.obj", 67, 2880},         {"vns/dress.obj", 3, 1342},
     {"vns/guitar.obj", 85, 2238},          {"vns/torus.obj", 9, 2525},
+    {"cassie/02-0-1.curves", 61, 839},     {"cassie/02-1-2.curves", 64, 558},
+    {"cassie/04-0-2.curves", 71, 804},     {"cassie/04-2-1.curves", 71, 820},
+    {"cassie/06-1-1.curves", 34, 462},     {"cassie/06-2-2.curves", 35, 352},
+    {"cassie/10-0-1.curves", 55, 550},     {"cassie/12-1-1.curves", 82, 700},
+    {"cassie/architecture.curves", 63, 442}, {"cassie/flower.curves", 45, 339},
+    {"cassie/dress.curves", 153, 911},     {"cassie/guitar.curves", 148, 770},
+    {"cassie/sewing-machine.curves", 140, 758},
+    {"vns/bathtub.obj", 19, 5077},         {"vns/boat.obj", 37, 3090},
+    {"vns/car.obj", 68, 3313},             {"vns/ellipsetorus.obj", 10, 3385},
+    {"vns/expresso_teaser_simplified.obj", 35, 4631},
+    {"vns/phone_flowrep.obj", 112, 3246},  {"vns/spherecylinder.obj", 7, 1813},
+    {"vns/trebol_flowrep.obj", 36, 2586},
 };
 
 std::filesystem::path data(const char* file) {
