@@ -68,6 +68,20 @@ CleanReport clean(Sketch& sketch, const CleanOptions& options) {
   std::vector<Stroke> kept;
   kept.reserve(sketch.strokes.size());
   for (auto& s : sketch.strokes) {
+    // Attributes that carry no geometry are reset rather than costing the stroke or the point.
+    if (!std::all_of(s.color.begin(), s.color.end(), [](float c) { return std::isfinite(c); })) {
+      s.color = Stroke{}.color;
+      ++report.non_finite_attributes;
+    }
+    if (!std::isfinite(s.width)) {
+      s.width = 0.0;
+      ++report.non_finite_attributes;
+    }
+    for (float& p : s.pressures)
+      if (!std::isfinite(p)) {
+        p = 1.f;
+        ++report.non_finite_attributes;
+      }
     std::vector<char> keep(s.points.size(), 1);
     const Eigen::Vector3d* previous = nullptr;
     for (std::size_t i = 0; i < s.points.size(); ++i) {
@@ -94,6 +108,9 @@ CleanReport clean(Sketch& sketch, const CleanOptions& options) {
   if (report.non_finite_points)
     report.messages.push_back("removed " + std::to_string(report.non_finite_points) +
                               " point(s) with NaN or infinite coordinates");
+  if (report.non_finite_attributes)
+    report.messages.push_back("reset " + std::to_string(report.non_finite_attributes) +
+                              " NaN or infinite colour, width or pressure value(s) to the default");
   if (report.duplicate_points)
     report.messages.push_back("removed " + std::to_string(report.duplicate_points) +
                               " duplicate consecutive point(s)");

@@ -79,8 +79,11 @@ struct CleanReport {
   std::size_t non_finite_points = 0;   ///< NaN or Inf coordinates
   std::size_t duplicate_points = 0;    ///< exact repeats of the previous point
   std::size_t short_strokes = 0;       ///< strokes left with fewer than min_points points
+  std::size_t non_finite_attributes = 0;  ///< NaN or Inf colours, widths, pressures reset
   std::vector<std::string> messages;   ///< one line per removal kind, empty when nothing removed
-  bool changed() const { return non_finite_points + duplicate_points + short_strokes > 0; }
+  bool changed() const {
+    return non_finite_points + duplicate_points + short_strokes + non_finite_attributes > 0;
+  }
 };
 
 /// Options for clean().
@@ -89,7 +92,8 @@ struct CleanOptions {
 };
 
 /// Removes non-finite points, exact duplicate consecutive points and too-short strokes, keeping
-/// per-point attributes aligned. Returns what was removed.
+/// per-point attributes aligned; resets a non-finite colour, width or pressure to its default
+/// (black, 0 = unknown, 1). Returns what was removed.
 CleanReport clean(Sketch& sketch, const CleanOptions& options = {});
 
 /// Resamples a polyline to uniform arc-length spacing `spacing` (> 0), keeping both endpoints.

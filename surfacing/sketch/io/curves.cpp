@@ -26,7 +26,8 @@ bool parse_point(std::string_view line, std::vector<std::string_view>& tokens, E
 
 Sketch read_curves(const std::filesystem::path& file, Warnings* warnings) {
   const std::string text = io_detail::read_file(file);
-  io_detail::LineReader lines(text);
+  io_detail::check_not_empty(text, file);
+  io_detail::LineReader lines(text, file);
   std::vector<std::string_view> tokens;
   Sketch sketch;
   sketch.provenance = "CASSIE .curves: " + file.filename().string();
@@ -38,12 +39,12 @@ Sketch read_curves(const std::filesystem::path& file, Warnings* warnings) {
     const std::size_t header_line = lines.line_number();
     if (tokens.size() != 2 || tokens[0] != "v")
       throw Error::input_at_line(file, header_line,
-                                 "expected a stroke header 'v N', got '" + std::string(line) + "'");
+                                 "expected a stroke header 'v N', got " + io_detail::excerpt(line));
     const auto n = io_detail::parse_int(tokens[1]);
     if (!n || *n < 0)
       throw Error::input_at_line(file, header_line,
-                                 "expected a point count >= 0 after 'v', got '" +
-                                     std::string(tokens[1]) + "'");
+                                 "expected a point count >= 0 after 'v', got " +
+                                     io_detail::excerpt(tokens[1]));
     // Every point line holds at least "0 0 0\n" (6 bytes): refuse an absurd count before
     // reserving memory for it.
     if (static_cast<std::uint64_t>(*n) > lines.bytes_left() / 6 + 1)
@@ -69,7 +70,8 @@ Sketch read_curves(const std::filesystem::path& file, Warnings* warnings) {
             header ? "stroke " + std::to_string(sketch.strokes.size()) + " (header at line " +
                          std::to_string(header_line) + ") declares " + std::to_string(*n) +
                          " points but has only " + std::to_string(stroke.points.size())
-                   : "expected a point 'x y z' (three numbers), got '" + std::string(line) + "'");
+                   : "expected a point 'x y z' (three numbers), got " +
+                         io_detail::excerpt(line));
       }
       stroke.points.push_back(p);
     }

@@ -12,6 +12,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/atomic_file.h"
+#include "surfacing/sketch/io/input_limits.h"
 #include "surfacing/sketch/io/text_io.h"
 
 namespace sketchsurf {
@@ -197,7 +198,7 @@ class SketchSax {
 
   // A key this version does not know: warned about once per pattern and skipped.
   void unknown(const Value& v, const std::string& pattern) {
-    warn_once("unknown key '" + pattern + "' ignored");
+    warn_once("unknown key " + io_detail::excerpt(pattern) + " ignored");
     if (v.is_compound()) push(Where::Skip, v.kind == Value::Kind::Array);
   }
 
@@ -635,7 +636,8 @@ class JsonParser {
         if (c == '-' || (c >= '0' && c <= '9')) {
           number();
         } else {
-          fail("unexpected character '" + std::string(1, static_cast<char>(c)) + "'; expected a value");
+          const char byte = static_cast<char>(c);
+          fail("unexpected character " + io_detail::excerpt({&byte, 1}) + "; expected a value");
         }
     }
   }
@@ -859,8 +861,9 @@ Sketch read_json_text(std::string_view text, const std::filesystem::path& name, 
 }
 
 Sketch read_json(const std::filesystem::path& file, Warnings* warnings) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw Error::input(file, "is a directory");
+  // Streamed, so only the size is bounded (a JSON sketch may well be a single line).
+  if (check_input_file(file, InputLimits::from_environment()) == 0)
+    throw Error::input(file, "the file is empty");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error::input(file, std::string("cannot open: ") + std::strerror(errno));
   Source source(in);

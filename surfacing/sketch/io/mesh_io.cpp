@@ -89,7 +89,8 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::filesystem::path& file) {
 
 PolygonSoup read_obj_soup(const std::filesystem::path& file, bool want_colors) {
   const std::string text = io_detail::read_file(file);
-  io_detail::LineReader lines(text);
+  io_detail::check_not_empty(text, file);
+  io_detail::LineReader lines(text, file);
   std::vector<std::string_view> tokens;
   PolygonSoup soup;
   std::vector<std::array<std::uint8_t, 3>> colors;
@@ -107,7 +108,7 @@ PolygonSoup read_obj_soup(const std::filesystem::path& file, bool want_colors) {
         const auto d = io_detail::parse_double(tokens[c + 1]);
         if (!d)
           throw Error::input_at_line(file, lines.line_number(),
-                                     "'" + std::string(tokens[c + 1]) + "' is not a number");
+                                     io_detail::excerpt(tokens[c + 1]) + " is not a number");
         values[c] = *d;
       }
       soup.points.emplace_back(values[0], values[1], values[2]);
@@ -125,7 +126,7 @@ PolygonSoup read_obj_soup(const std::filesystem::path& file, bool want_colors) {
         const auto i = io_detail::parse_int(token);
         if (!i || *i == 0)
           throw Error::input_at_line(file, lines.line_number(),
-                                     "'" + std::string(tokens[k]) + "' is not a vertex index");
+                                     io_detail::excerpt(tokens[k]) + " is not a vertex index");
         // 1-based; negative counts back from the last vertex read so far.
         soup.indices.push_back(*i > 0 ? *i - 1 : static_cast<std::int64_t>(soup.points.size()) + *i);
       }
@@ -229,13 +230,13 @@ class PlyData {
       const auto i = io_detail::parse_int(token);
       if (!i)
         throw Error::input_at_byte(file_, start,
-                                   what() + ": '" + std::string(token) + "' is not an integer");
+                                   what() + ": " + io_detail::excerpt(token) + " is not an integer");
       return static_cast<double>(*i);
     }
     const auto d = io_detail::parse_double(token);
     if (!d)
       throw Error::input_at_byte(file_, start,
-                                 what() + ": '" + std::string(token) + "' is not a number");
+                                 what() + ": " + io_detail::excerpt(token) + " is not a number");
     return *d;
   }
 
@@ -276,7 +277,7 @@ class PlyData {
 /// Parses the header; returns the offset of the first data byte.
 std::size_t read_ply_header(std::string_view text, const std::filesystem::path& file,
                             PlyFormat& format, std::vector<PlyElement>& elements) {
-  io_detail::LineReader lines(text);
+  io_detail::LineReader lines(text, file);
   std::vector<std::string_view> tokens;
   std::string_view line;
   if (!lines.next(line) || line != "ply") throw Error::input(file, "not a PLY file (no 'ply' magic)");
@@ -293,7 +294,7 @@ std::size_t read_ply_header(std::string_view text, const std::filesystem::path& 
       if (tokens[1] == "ascii") format = PlyFormat::Ascii;
       else if (tokens[1] == "binary_little_endian") format = PlyFormat::BinaryLittle;
       else if (tokens[1] == "binary_big_endian") format = PlyFormat::BinaryBig;
-      else throw Error::input_at_line(file, at, "unknown PLY format '" + std::string(tokens[1]) + "'");
+      else throw Error::input_at_line(file, at, "unknown PLY format " + io_detail::excerpt(tokens[1]));
       have_format = true;
     } else if (tokens[0] == "element") {
       const auto count = tokens.size() == 3 ? io_detail::parse_int(tokens[2]) : std::nullopt;
@@ -312,14 +313,14 @@ std::size_t read_ply_header(std::string_view text, const std::filesystem::path& 
       } else if (tokens.size() == 3) {
         const auto type = ply_type(tokens[1]);
         if (!type)
-          throw Error::input_at_line(file, at, "unknown property type '" + std::string(tokens[1]) + "'");
+          throw Error::input_at_line(file, at, "unknown property type " + io_detail::excerpt(tokens[1]));
         property = {std::string(tokens[2]), *type};
       } else {
         throw Error::input_at_line(file, at, "expected 'property TYPE NAME' or 'property list ...'");
       }
       elements.back().properties.push_back(property);
     } else {
-      throw Error::input_at_line(file, at, "unknown header line '" + std::string(line) + "'");
+      throw Error::input_at_line(file, at, "unknown header line " + io_detail::excerpt(line));
     }
   }
   if (!have_format) throw Error::input(file, "the PLY header has no 'format' line");
@@ -424,8 +425,9 @@ PolygonSoup read_ply_soup(const std::filesystem::path& file, bool want_attribute
     }
   }
   if (!have_vertices) throw Error::input(file, "no vertex element: not a mesh");
-  for (const auto& p : soup.points)
-    if (!p.allFinite()) throw Error::input(file, "a vertex position is NaN or infinite");
+  for (std::size_t v = 0; v < soup.points.size(); ++v)
+    if (!soup.points[v].allFinite())
+      throw Error::input(file, "vertex " + std::to_string(v) + ": the position is NaN or infinite");
   return soup;
 }
 

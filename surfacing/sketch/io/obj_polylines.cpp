@@ -20,8 +20,7 @@ std::optional<std::size_t> resolve_index(std::string_view token, std::size_t cou
   token = token.substr(0, token.find('/'));
   const auto i = io_detail::parse_int(token);
   if (!i || *i == 0) {
-    // Not "'" + std::string(token): GCC 12 warns falsely about it (-Wrestrict).
-    why = std::string(token).insert(0, 1, '\'') + "' is not a vertex index";
+    why = io_detail::excerpt(token) + " is not a vertex index";
     return std::nullopt;
   }
   // 1-based; negative indices count back from the last vertex read (-1 = the last one).
@@ -96,7 +95,8 @@ std::vector<Chain> segment_chains(std::size_t vertex_count,
 
 Sketch read_obj_polylines(const std::filesystem::path& file, Warnings* warnings) {
   const std::string text = io_detail::read_file(file);
-  io_detail::LineReader lines(text);
+  io_detail::check_not_empty(text, file);
+  io_detail::LineReader lines(text, file);
   std::vector<std::string_view> tokens;
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Chain> records;  // the `l` records
@@ -117,7 +117,8 @@ Sketch read_obj_polylines(const std::filesystem::path& file, Warnings* warnings)
         const auto d = io_detail::parse_double(tokens[c + 1]);
         if (!d)
           throw Error::input_at_line(file, lines.line_number(),
-                                     "'" + std::string(tokens[c + 1]) + "' is not a number");
+                                     io_detail::excerpt(tokens[c + 1]) +
+                                         " is not a number");
         p[c] = *d;
       }
       vertices.push_back(p);
@@ -143,7 +144,7 @@ Sketch read_obj_polylines(const std::filesystem::path& file, Warnings* warnings)
                kind == "s" || kind == "usemtl" || kind == "mtllib") {
       // no bearing on strokes
     } else {
-      unknown.insert(std::string(kind));
+      if (unknown.size() < 10) unknown.insert(io_detail::excerpt(kind));
     }
   }
   if (warnings) {
@@ -155,7 +156,7 @@ Sketch read_obj_polylines(const std::filesystem::path& file, Warnings* warnings)
                           " 'l' segment(s) from a vertex to itself");
     if (!unknown.empty()) {
       std::string list;
-      for (const auto& k : unknown) list += (list.empty() ? "'" : ", '") + k + "'";
+      for (const auto& k : unknown) list += (list.empty() ? "" : ", ") + k;
       warnings->push_back("ignored records of unknown kind " + list);
     }
   }

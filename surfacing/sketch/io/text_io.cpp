@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "surfacing/error.h"
+#include "surfacing/sketch/io/input_limits.h"
 
 namespace sketchsurf::io_detail {
 
@@ -46,28 +47,54 @@ void append_shortest(std::string& out, T value) {
 }  // namespace
 
 std::string read_file(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw Error::input(file, "is a directory");
+  const std::uint64_t size = check_input_file(file, InputLimits::from_environment());
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error::input(file, std::string("cannot open: ") + std::strerror(errno));
-  const auto size = std::filesystem::file_size(file, ec);
-  std::string bytes;
-  if (!ec) {
-    bytes.resize(size);
-    in.read(bytes.data(), static_cast<std::streamsize>(size));
-    bytes.resize(static_cast<std::size_t>(in.gcount()));
-    if (in.gcount() == static_cast<std::streamsize>(size)) in.peek();  // sets eof if size was exact
-  }
-  if (!in.eof())  // size unknown or the file grew: read the rest
-    bytes.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error::input(file, "read error");
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(size));
+  if (in.bad() || in.gcount() != static_cast<std::streamsize>(size))
+    throw Error::input(file, "read error (the file changed while it was read?)");
   return bytes;
 }
+
+void check_not_empty(std::string_view text, const std::filesystem::path& file) {
+  if (text.find_first_not_of(" \t\r\n\f\v") == std::string_view::npos)
+    throw Error::input(file, "the file is empty");
+}
+
+std::string excerpt(std::string_view text) {
+  constexpr std::size_t kMax = 80;
+  std::string out = "'";
+  std::size_t i = 0;
+  for (; i < text.size() && out.size() <= kMax; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  out += i < text.size() ? "'... (" + std::to_string(text.size()) + " bytes)" : "'";
+  return out;
+}
+
+LineReader::LineReader(std::string_view text, const std::filesystem::path& file)
+    : text_(text), file_(&file), max_line_(InputLimits::from_environment().line_bytes) {}
 
 bool LineReader::next(std::string_view& line) {
   if (pos_ >= text_.size()) return false;
   const std::size_t end = text_.find('\n', pos_);
   const std::size_t stop = end == std::string_view::npos ? text_.size() : end;
+  if (file_ && stop - pos_ > max_line_)
+    throw Error::input_at_line(*file_, line_ + 1,
+                               "the line is " + std::to_string(stop - pos_) +
+                                   " bytes long, over the limit of " +
+                                   std::to_string(max_line_ >> 10) +
+                                   " KiB (not a text sketch?); if the file is right, raise it "
+                                   "with SKETCHSURF_MAX_LINE_KB=<KiB>");
   line = text_.substr(pos_, stop - pos_);
   pos_ = end == std::string_view::npos ? text_.size() : end + 1;
   ++line_;

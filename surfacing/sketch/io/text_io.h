@@ -12,8 +12,18 @@
 
 namespace sketchsurf::io_detail {
 
-/// The bytes of `file`. Throws Error (Input) naming the file when it cannot be opened or read.
+/// The bytes of `file`, after check_input_file() with InputLimits::from_environment(). Throws
+/// Error (Input) naming the file when it cannot be opened or read, is not a regular file or is
+/// over the size limit.
 std::string read_file(const std::filesystem::path& file);
+
+/// Throws Error (Input) "FILE: the file is empty" when `text` holds nothing but whitespace.
+void check_not_empty(std::string_view text, const std::filesystem::path& file);
+
+/// A piece of a file's text fit for a message: single-quoted, cut to about 80 characters (with
+/// "...") and with control and non-ASCII bytes written as \xNN, so a message never carries NUL
+/// bytes or megabytes of a broken line.
+std::string excerpt(std::string_view text);
 
 /// The file's extension in lower case, with its dot (".ply").
 std::string lower_extension(const std::filesystem::path& file);
@@ -23,6 +33,9 @@ std::string lower_extension(const std::filesystem::path& file);
 class LineReader {
  public:
   explicit LineReader(std::string_view text) : text_(text) {}
+  /// Same, refusing lines longer than InputLimits::from_environment().line_bytes: next() throws
+  /// Error (Input) naming `file` and the line.
+  LineReader(std::string_view text, const std::filesystem::path& file);
   /// The next line, or false at the end of the text.
   bool next(std::string_view& line);
   /// Number of the line last returned by next() (1-based).
@@ -32,6 +45,8 @@ class LineReader {
 
  private:
   std::string_view text_;
+  const std::filesystem::path* file_ = nullptr;  ///< set when lines are limited
+  std::size_t max_line_ = 0;
   std::size_t pos_ = 0;
   std::size_t line_ = 0;
 };

@@ -31,6 +31,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/atomic_file.h"
+#include "surfacing/sketch/io/input_limits.h"
 
 namespace sketchsurf {
 
@@ -44,9 +45,7 @@ constexpr std::uint32_t kSentinel = 0xC576A5CD;  // first u32 of data.sketch
 constexpr std::size_t kHeaderBytes = 16;
 constexpr std::uint16_t kHeaderVersion = 1;
 constexpr std::int32_t kSketchVersion = 5;
-constexpr std::uint64_t kMaxEntryBytes = std::uint64_t{1} << 30;  // no sketch entry is near 1 GiB
 constexpr std::uint64_t kMaxDeflateRatio = 1100;  // Deflate's best case is ~1032:1
-constexpr std::uint64_t kMaxFileBytes = std::uint64_t{2} << 30;
 constexpr std::size_t kStrokeFixedBytes = 36;  // brush, RGBA, size, 2 masks, point count
 constexpr std::size_t kPointFixedBytes = 28;   // position + orientation
 constexpr double kUnitsToMetres = 0.1;         // 1 Open Brush unit = 1 decimetre (section 3)
@@ -470,11 +469,17 @@ Buffer read_entry(zip_t* za, zip_uint64_t index, std::uint64_t zip_bytes, const 
                                  std::to_string(st.comp_method) + " (only Stored and Deflate are read)");
   const std::uint64_t ratio_limit =
       st.comp_method == ZIP_CM_STORE ? st.comp_size : st.comp_size * kMaxDeflateRatio + 1024;
-  if (st.comp_size > zip_bytes || st.size > kMaxEntryBytes || st.size > ratio_limit)
+  if (st.comp_size > zip_bytes || st.size > ratio_limit)
     throw Error::input(name, "zip entry " + entry + " claims " + std::to_string(st.size) +
                                  " bytes from " + std::to_string(st.comp_size) +
                                  " compressed bytes in a " + std::to_string(zip_bytes) +
                                  "-byte archive: refused as implausible");
+  const std::uint64_t limit = InputLimits::from_environment().file_bytes;
+  if (st.size > limit)
+    throw Error::input(name, "zip entry " + entry + " inflates to " + std::to_string(st.size) +
+                                 " bytes, over the input limit of " + std::to_string(limit >> 20) +
+                                 " MiB; if the file is right, raise it with "
+                                 "SKETCHSURF_MAX_INPUT_MB=<MiB>");
   std::unique_ptr<zip_file_t, ZipFileClose> file(zip_fopen_index(za, index, 0));
   if (!file) throw Error::input(name, "zip entry " + entry + ": " + zip_strerror(za));
   Buffer out(static_cast<std::size_t>(st.size), '\0');
@@ -538,15 +543,10 @@ TiltEntries entries_from_bytes(Bytes bytes, const fs::path& name) {
   throw Error::input(name, "the zip archive after the header cannot be read: " + why);
 }
 
-/// Reads a whole regular file, refusing ones no sketch could be.
+/// Reads a whole regular file, refusing ones over the input limit (check_input_file).
 template <class Buffer>
-Buffer read_file(const fs::path& file, std::uint64_t limit) {
-  std::error_code ec;
-  const auto size = fs::file_size(file, ec);
-  if (ec) throw Error::input(file, "cannot read: " + ec.message());
-  if (size > limit)
-    throw Error::input(file, std::to_string(size) + " bytes is larger than any sketch (limit " +
-                                 std::to_string(limit) + ")");
+Buffer read_file(const fs::path& file) {
+  const std::uint64_t size = check_input_file(file, InputLimits::from_environment());
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error::input(file, "cannot open for reading");
   Buffer out(static_cast<std::size_t>(size), '\0');
@@ -560,11 +560,11 @@ TiltEntries entries_from_directory(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_regular_file(dir / "data.sketch", ec))
     throw Error::input(dir, "directory-form .tilt without a data.sketch file");
-  entries.sketch = read_file<std::vector<std::uint8_t>>(dir / "data.sketch", kMaxEntryBytes);
+  entries.sketch = read_file<std::vector<std::uint8_t>>(dir / "data.sketch");
   if (!fs::is_regular_file(dir / "metadata.json", ec)) entries.metadata_entry = "main.json";
   if (!fs::is_regular_file(dir / entries.metadata_entry, ec))
     throw Error::input(dir, "directory-form .tilt without metadata.json or main.json");
-  entries.metadata = read_file<std::string>(dir / entries.metadata_entry, kMaxEntryBytes);
+  entries.metadata = read_file<std::string>(dir / entries.metadata_entry);
   return entries;
 }
 
@@ -770,7 +770,7 @@ Sketch read_tilt(const std::filesystem::path& file, Warnings* warnings) {
   TiltEntries entries;
   {
     // The file's bytes are released before the strokes are decoded, to keep peak memory low.
-    const auto bytes = read_file<std::vector<std::uint8_t>>(file, kMaxFileBytes);
+    const auto bytes = read_file<std::vector<std::uint8_t>>(file);
     entries = entries_from_bytes(bytes, file);
   }
   return decode(entries, file, warnings);

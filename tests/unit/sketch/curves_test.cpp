@@ -37,8 +37,9 @@ TEST(Curves, EmptyStrokesAreSkippedWithAWarning) {
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("skipped 2 stroke(s)"), std::string::npos);
   EXPECT_TRUE(read_curves(dir / "a.curves").strokes.size() == 1u);  // warnings are optional
-  testing::write_text(dir / "empty.curves", "");
-  EXPECT_TRUE(read_curves(dir / "empty.curves").strokes.empty());
+  testing::write_text(dir / "empty.curves", "");  // no stroke at all: said to be empty
+  testing::expect_error([&] { read_curves(dir / "empty.curves"); }, ErrorKind::Input,
+                        {"empty.curves: the file is empty"});
 }
 
 TEST(Curves, ErrorsGiveTheLineAndWhatWasExpected) {

@@ -160,7 +160,7 @@ TEST(Json, SyntaxErrorsGiveTheByteOffset) {
   expect_error([] { read_text(document(R"({"points": [[0, 0, 0],]})")); }, ErrorKind::Input,
                {"byte", "in strokes[0].points"});
   expect_error([] { read_json("/nonexistent/dir/s.json"); }, ErrorKind::Input,
-               {"/nonexistent/dir/s.json", "cannot open"});
+               {"/nonexistent/dir/s.json", "no such file"});
 }
 
 TEST(Json, StringsAreUnescapedAndCheckedForUtf8) {
