@@ -1,0 +1,91 @@
+// `sketchsurf synth`: writes a readable sketch; bad input and options give exit 3 and 2 naming
+// the file or the option.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "surfacing/sketch/io/mesh_io.h"
+#include "surfacing/sketch/io/sketch_io.h"
+#include "tests/support/shapes.h"
+
+namespace sketchsurf {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string err;
+};
+
+CliRun synth(const std::string& args, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string command = std::string("'") + SKETCHSURF_CLI + "' synth " + args +
+                              " > /dev/null 2> '" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  CliRun run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  run.err = text.str();
+  return run;
+}
+
+fs::path scratch() {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("sketchsurf_synth_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(SynthCli, WritesAReadableSketchInEveryStyle) {
+  const fs::path dir = scratch();
+  write_mesh(testing::icosphere(3, 0.5), dir / "sphere.ply");
+  for (const std::string style : {"net", "vr"}) {
+    const fs::path out = dir / ("sphere_" + style + ".json");
+    const CliRun run = synth("'" + (dir / "sphere.ply").string() + "' -o '" + out.string() +
+                              "' --style " + style + " --seed 4 --sections 2",
+                          dir);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const Sketch sketch = read_sketch(out);
+    EXPECT_GE(sketch.strokes.size(), 6u) << style;
+  }
+  const fs::path curves = dir / "sphere.curves";
+  ASSERT_EQ(synth("'" + (dir / "sphere.ply").string() + "' -o '" + curves.string() + "'", dir).exit_code, 0);
+  EXPECT_FALSE(read_sketch(curves).strokes.empty());
+  fs::remove_all(dir);
+}
+
+TEST(SynthCli, ErrorsNameTheFileOrOption) {
+  const fs::path dir = scratch();
+  std::ofstream(dir / "broken.obj") << "v 0 0 0\nf 1 2 3\n";
+  CliRun run = synth("'" + (dir / "broken.obj").string() + "' -o '" + (dir / "out.json").string() + "'", dir);
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  EXPECT_NE(run.err.find("broken.obj"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "out.json"));
+
+  run = synth("'" + (dir / "missing.ply").string() + "' -o '" + (dir / "out.json").string() + "'", dir);
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  EXPECT_NE(run.err.find("missing.ply"), std::string::npos) << run.err;
+
+  write_mesh(testing::icosphere(2, 0.5), dir / "sphere.obj");
+  const std::string mesh = "'" + (dir / "sphere.obj").string() + "'";
+  run = synth(mesh + " -o '" + (dir / "out.json").string() + "' --style pencil", dir);
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("--style"), std::string::npos) << run.err;
+  run = synth(mesh + " -o '" + (dir / "out.json").string() + "' --gap 2", dir);
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("--gap"), std::string::npos) << run.err;
+  run = synth(mesh + " -o '" + (dir / "out.png").string() + "'", dir);
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("out.png"), std::string::npos) << run.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sketchsurf
