@@ -2,14 +2,12 @@
 // the file or the option.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <fstream>
-#include <sstream>
 
 #include "surfacing/sketch/io/mesh_io.h"
 #include "surfacing/sketch/io/sketch_io.h"
+#include "tests/support/cli_run.h"
 #include "tests/support/shapes.h"
 
 namespace sketchsurf {
@@ -17,28 +15,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string err;
-};
+using testing::CliRun;
 
-CliRun synth(const std::string& args, const fs::path& dir) {
-  const fs::path err = dir / "stderr.txt";
-  const std::string command = std::string("'") + SKETCHSURF_CLI + "' synth " + args +
-                              " > /dev/null 2> '" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  CliRun run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  run.err = text.str();
-  return run;
-}
+CliRun synth(const std::string& args, const fs::path& dir) { return testing::run_cli("synth " + args, dir); }
 
+/// A fresh folder for the running test (tests of one binary may run in parallel under CTest).
 fs::path scratch() {
   const fs::path dir = fs::temp_directory_path() /
-                       ("sketchsurf_synth_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+                       (std::string("sketchsurf_synth_cli_") +
+                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
 }
@@ -49,8 +35,8 @@ TEST(SynthCli, WritesAReadableSketchInEveryStyle) {
   for (const std::string style : {"net", "vr"}) {
     const fs::path out = dir / ("sphere_" + style + ".json");
     const CliRun run = synth("'" + (dir / "sphere.ply").string() + "' -o '" + out.string() +
-                              "' --style " + style + " --seed 4 --sections 2",
-                          dir);
+                                 "' --style " + style + " --seed 4 --sections 2",
+                             dir);
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const Sketch sketch = read_sketch(out);
     EXPECT_GE(sketch.strokes.size(), 6u) << style;
