@@ -1,12 +1,11 @@
 // sketchsurf convert IN OUT: any sketch reader to any sketch writer, by extension.
 
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "tools/sketchsurf/commands.h"
+#include "tools/sketchsurf/run_files.h"
 
 namespace sketchsurf::cli {
 
@@ -18,16 +17,10 @@ struct ConvertOptions {
 };
 
 void run_convert(const ConvertOptions& opt, const GlobalOptions& global) {
-  // A wrong output extension is a usage error before any time goes into reading.
-  std::string ext = std::filesystem::path(opt.output).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const auto writable = writable_sketch_extensions();
-  if (std::find(writable.begin(), writable.end(), ext) == writable.end()) {
-    std::string list;
-    for (const auto& w : writable) list += (list.empty() ? "" : ", ") + w;
-    throw Error::usage(opt.output + ": unknown sketch extension '" + ext + "' (writable: " + list + ")");
-  }
+  // A wrong output is a usage error before any time goes into reading.
+  RunFiles files;
+  files.input(opt.input);
+  files.output("OUT", opt.output, writable_sketch_extensions());
   Warnings warnings;
   Sketch sketch = read_sketch(opt.input, &warnings);
   print_warnings(global, opt.input, warnings);
@@ -36,7 +29,8 @@ void run_convert(const ConvertOptions& opt, const GlobalOptions& global) {
     if (!global.quiet)
       for (const auto& m : report.messages) std::cerr << opt.input << ": " << m << "\n";
   }
-  write_sketch(sketch, opt.output);
+  files.write(opt.output, [&](const auto& file) { write_sketch(sketch, file); });
+  files.commit();
   if (global.verbose)
     std::cerr << "wrote " << opt.output << ": " << sketch.strokes.size() << " strokes, "
               << sketch.point_count() << " points\n";
@@ -50,10 +44,7 @@ void add_convert_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("IN", opt->input, "Input sketch (.tilt, .curves, .obj, .json)")->required();
   cmd->add_option("OUT", opt->output, "Output sketch (.json, .tilt, .obj, .curves)")->required();
   cmd->add_flag("--clean", opt->clean, "Remove NaN/Inf points, duplicates and too-short strokes");
-  cmd->callback([opt, &global] {
-    if (opt->input == opt->output) throw Error::usage("IN and OUT are the same file");
-    run_convert(*opt, global);
-  });
+  cmd->callback([opt, &global] { run_convert(*opt, global); });
 }
 
 }  // namespace sketchsurf::cli

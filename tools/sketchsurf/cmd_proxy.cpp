@@ -12,6 +12,7 @@
 #include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
 #include "tools/sketchsurf/reports.h"
+#include "tools/sketchsurf/run_files.h"
 
 namespace sketchsurf::cli {
 
@@ -60,9 +61,11 @@ nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt)
 void run_proxy(const ProxyCommandOptions& opt, const GlobalOptions& global) {
   std::string why;
   if (!opt.proxy.valid(&why)) throw Error::usage(why);
-  const std::string ext = std::filesystem::path(opt.output).extension().string();
-  if (ext != ".obj" && ext != ".ply")
-    throw Error::usage("proxy output must be .obj or .ply, got '" + opt.output + "'");
+  RunFiles files;
+  files.input(opt.sketch);
+  files.input(opt.from);
+  files.output("-o", opt.output, {".obj", ".ply"});
+  if (!opt.report.empty()) files.output("--report", opt.report);
   Sketch sketch = read_clean_sketch(opt.sketch, global);
   if (global.verbose)
     std::cerr << "proxy: points " << opt.proxy.points << ", lambda " << opt.proxy.lambda
@@ -79,11 +82,14 @@ void run_proxy(const ProxyCommandOptions& opt, const GlobalOptions& global) {
     if (e.kind() != ErrorKind::Processing) throw;
     throw Error::processing(opt.sketch + ": " + e.what());
   }
-  write_mesh(mesh, opt.output);
+  files.write(opt.output, [&](const auto& file) { write_mesh(mesh, file); });
   if (!opt.report.empty()) {
     const nlohmann::json j = report_json(report, opt);
-    write_atomically(opt.report, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+    files.write(opt.report, [&](const auto& file) {
+      write_atomically(file, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+    });
   }
+  files.commit();
   if (!global.quiet)
     std::cerr << "proxy: " << report.vertices << " vertices, " << report.faces << " faces, "
               << report.topology.components << " component(s), genus " << report.topology.genus
@@ -100,13 +106,13 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("-o,--output", opt->output, "Proxy mesh (.obj or .ply)")->required();
   cmd->add_option("--points", opt->proxy.points, "VIPSS sample points")
       ->capture_default_str()
-      ->check(CLI::Range(10, 20000));
+      ->check(whole_number(10, 20000));
   cmd->add_option("--lambda", opt->proxy.lambda, "VIPSS smoothing, 0 = interpolate the samples")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--edge", opt->proxy.edge, "Target edge length, fraction of the bbox diagonal")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--from", opt->from, "Rough user proxy (.obj, .ply) to attract to the strokes")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--attract", opt->proxy.attract_vipss,
@@ -114,7 +120,9 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global) {
                 "sharp, planar sketches)")
       ->excludes("--from");
   cmd->add_option("--report", opt->report, "Write counts, genus and per-stage timings as JSON");
-  cmd->add_option("--threads", opt->proxy.threads, "Worker threads (0 = all)")->capture_default_str();
+  cmd->add_option("--threads", opt->proxy.threads, "Worker threads (0 = all)")
+      ->capture_default_str()
+      ->check(whole_number(0, kMaxThreads));
   cmd->callback([opt, &global] { run_proxy(*opt, global); });
 }
 

@@ -9,6 +9,7 @@
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
+#include "tools/sketchsurf/run_files.h"
 
 namespace sketchsurf::cli {
 
@@ -73,6 +74,22 @@ std::array<float, 4> parse_color(const std::string& text) {
   return c;
 }
 
+/// Refuses a picture whose images (multisampled colour and depth, resolved colour, readback)
+/// would take more than 2 GiB, before any Vulkan memory is asked for: beyond that lavapipe and
+/// most GPUs run out of memory with a driver error that says nothing about --size.
+void check_image_memory(int width, int height, int msaa) {
+  constexpr double kMaxBytes = 2.0 * (1ull << 30);
+  const double bytes = double(width) * double(height) * (8.0 * msaa + 8.0);
+  if (bytes > kMaxBytes) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f GiB", bytes / (1ull << 30));
+    throw Error::usage("--size " + std::to_string(width) + "x" + std::to_string(height) +
+                       " with --msaa " + std::to_string(msaa) + " needs about " + text +
+                       " of image memory, more than the 2 GiB a render may take: choose a "
+                       "smaller --size or a lower --msaa");
+  }
+}
+
 /// OUT.png for a single picture; OUT_000.png, OUT_001.png, ... for a turntable.
 std::filesystem::path frame_path(const std::filesystem::path& out, int frame, int frames) {
   if (frames <= 1) return out;
@@ -90,8 +107,13 @@ void run_render(const RenderCommandOptions& opt, const GlobalOptions& global) {
     for (const auto& n : render::view_names()) names += (names.empty() ? "" : ", ") + n;
     throw Error::usage("--view: unknown view '" + opt.view + "' (one of " + names + ")");
   }
-  if (std::filesystem::path(opt.output).extension() != ".png")
-    throw Error::usage("-o: the output must be a .png file, got '" + opt.output + "'");
+  check_image_memory(width, height, opt.msaa);
+  RunFiles files;
+  files.input(opt.sketch);
+  files.input(opt.mesh);
+  const int frames = std::max(opt.turntable, 1);
+  for (int f = 0; f < frames; ++f)
+    files.output("-o", frame_path(opt.output, f, opt.turntable).string(), {".png"});
   if (opt.regions && opt.mesh.empty()) throw Error::usage("--regions needs --mesh");
   std::string why;
   if (!opt.scene.valid(&why)) throw Error::usage(why);
@@ -135,13 +157,15 @@ void run_render(const RenderCommandOptions& opt, const GlobalOptions& global) {
               << " outlined edges; eye (" << camera.eye.transpose() << "), target ("
               << camera.target.transpose() << ")\n";
 
-  const int frames = std::max(opt.turntable, 1);
   for (int f = 0; f < frames; ++f) {
+    if (cancel_requested()) break;  // commit() reports it
     const render::Camera frame_camera = render::orbit(camera, 2.0 * M_PI * f / frames);
     const auto file = frame_path(opt.output, f, opt.turntable);
-    render::write_png(renderer.render(frame_camera, draw), file);
+    const render::RgbaImage image = renderer.render(frame_camera, draw);
+    files.write(file.string(), [&](const auto& path) { render::write_png(image, path); });
     if (global.verbose) std::cerr << "render: wrote " << file.string() << "\n";
   }
+  files.commit();
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
 #include "tools/sketchsurf/reports.h"
+#include "tools/sketchsurf/run_files.h"
 
 namespace sketchsurf::cli {
 
@@ -67,6 +68,11 @@ nlohmann::json report_json(const Segmentation& s, const SegmentOptions& o) {
 void run_segment(const SegmentCommandOptions& opt, const GlobalOptions& global) {
   std::string why;
   if (!opt.segment.valid(&why)) throw Error::usage(why);
+  RunFiles files;
+  files.input(opt.sketch);
+  files.input(opt.proxy);
+  files.output("-o", opt.output, {".obj", ".ply"});
+  if (!opt.report.empty()) files.output("--report", opt.report);
   Sketch sketch = read_clean_sketch(opt.sketch, global);
   if (sketch.strokes.empty()) throw Error::input(opt.sketch, "no stroke left to segment");
   const TriMesh proxy = read_mesh(opt.proxy);
@@ -80,11 +86,14 @@ void run_segment(const SegmentCommandOptions& opt, const GlobalOptions& global) 
   MeshAttributes attributes;
   attributes.labels = s.labels;
   for (int l : s.labels) attributes.colors.push_back(region_color(l));
-  write_mesh(proxy, opt.output, attributes);
+  files.write(opt.output, [&](const auto& file) { write_mesh(proxy, file, attributes); });
   if (!opt.report.empty()) {
     const nlohmann::json j = report_json(s, opt.segment);
-    write_atomically(opt.report, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+    files.write(opt.report, [&](const auto& file) {
+      write_atomically(file, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+    });
   }
+  files.commit();
   if (!global.quiet)
     std::cerr << "segment: " << s.models.size() << " regions, energy " << s.summary.energy.total
               << ", " << s.summary.iterations << " iterations\n";
@@ -100,15 +109,19 @@ void add_segment_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("-o,--output", opt->output, "Labelled proxy (.ply with per-vertex label and colour, or .obj)")
       ->required();
   cmd->add_option("--report", opt->report, "Write energies, models and timings as JSON");
-  cmd->add_option("--seed", opt->segment.seed, "Random seed")->capture_default_str();
+  cmd->add_option("--seed", opt->segment.seed, "Random seed")
+      ->capture_default_str()
+      ->check(whole_number(0, UINT64_MAX));
   cmd->add_option("--restarts", opt->segment.restarts, "Independent PEARL runs, lowest energy kept")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, 1000));
   cmd->add_option("--epsilon", opt->segment.epsilon,
                   "Fidelity tolerance, fraction of the bounding-box diagonal (Eq. 2)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--threads", opt->segment.threads, "Worker threads (0 = all)")->capture_default_str();
+      ->check(positive_number());
+  cmd->add_option("--threads", opt->segment.threads, "Worker threads (0 = all)")
+      ->capture_default_str()
+      ->check(whole_number(0, kMaxThreads));
   cmd->callback([opt, &global] { run_segment(*opt, global); });
 }
 

@@ -15,6 +15,7 @@
 #include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
 #include "tools/sketchsurf/reports.h"
+#include "tools/sketchsurf/run_files.h"
 
 namespace sketchsurf::cli {
 
@@ -146,9 +147,16 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
 }
 
 void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) {
+  RunFiles files;
+  files.input(opt.sketch);
+  files.input(opt.proxy);
+  files.output("-o", opt.output, {".obj", ".ply"});
+  if (!opt.regions.empty()) files.output("--regions", opt.regions, {".obj", ".ply"});
+  if (!opt.report.empty()) files.output("--report", opt.report);
   Warnings warnings;
   Sketch sketch = read_sketch(opt.sketch, &warnings);
   print_warnings(global, opt.sketch, warnings);
+  check_extent(sketch, opt.sketch);
   Params params;
   try {
     params.apply(sketch.params);
@@ -183,22 +191,31 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
               << params.extract.energy.gamma_1d << (sketch.mirror ? ", mirrored" : "") << "\n";
   }
 
-  const SurfaceResult result =
-      Surfacer(params, stderr_progress(global)).run(sketch, proxy ? &*proxy : nullptr);
+  const SurfaceResult result = [&] {
+    try {
+      return Surfacer(params, stderr_progress(global)).run(sketch, proxy ? &*proxy : nullptr);
+    } catch (const Error& e) {  // what is wrong with the sketch, said with its file name
+      if (e.kind() != ErrorKind::Input) throw;
+      throw Error::input(opt.sketch, e.what());
+    }
+  }();
 
   MeshAttributes attributes;
   attributes.labels = result.labels;
   attributes.sharp = result.sharp;
-  write_mesh(result.mesh, opt.output, attributes);
+  files.write(opt.output, [&](const auto& file) { write_mesh(result.mesh, file, attributes); });
   if (!opt.regions.empty()) {
     MeshAttributes regions;
     regions.labels = result.segmentation.labels;
-    write_mesh(result.proxy, opt.regions, regions);
+    files.write(opt.regions, [&](const auto& file) { write_mesh(result.proxy, file, regions); });
   }
   if (!opt.report.empty()) {
     const nlohmann::json j = report_json(result, params);
-    write_atomically(opt.report, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+    files.write(opt.report, [&](const auto& file) {
+      write_atomically(file, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+    });
   }
+  files.commit();
   if (!global.quiet)
     std::cerr << "surface: " << result.mesh.n_vertices() << " vertices, "
               << result.segmentation.models.size() << " regions, median stroke distance "
@@ -223,8 +240,10 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
                   "Symmetry plane: x, y, z or a,b,c,d (a x + b y + c z + d = 0); overrides the file's");
   cmd->add_option("--boundary-strokes", opt->boundary_strokes,
                   "Ids of strokes bounding an open surface, e.g. 3,5,9-12 (adds to the file's marks)");
-  cmd->add_option("--seed", opt->seed, "Random seed of the segmentation");
-  cmd->add_option("--threads", opt->threads, "Worker threads (0 = all); never changes the result");
+  cmd->add_option("--seed", opt->seed, "Random seed of the segmentation")
+      ->check(whole_number(0, UINT64_MAX));
+  cmd->add_option("--threads", opt->threads, "Worker threads (0 = all); never changes the result")
+      ->check(whole_number(0, kMaxThreads));
   cmd->callback([opt, &global] { run_surface(*opt, global); });
 }
 

@@ -29,10 +29,14 @@ void add_render_command(CLI::App& app, const GlobalOptions& global);
 
 /// Progress on stderr: a bar on a terminal, one plain line per stage and per 10% otherwise.
 ProgressCallback stderr_progress(const GlobalOptions& global);
-/// Reads a sketch, prints its reader warnings, cleans it (NaN/Inf, duplicates, too-short strokes)
+/// Reads a sketch, prints its reader warnings, refuses coordinates too large to surface
+/// (check_extent), cleans it (NaN/Inf, duplicates, too-short strokes)
 /// and prints what cleaning removed, unless quiet.
 Sketch read_clean_sketch(const std::string& file, const GlobalOptions& global);
 /// Prints reader warnings to stderr as "FILE: warning: ...", unless quiet.
 void print_warnings(const GlobalOptions& global, const std::string& file, const Warnings& warnings);
+/// `text` with control bytes other than newline and tab written as \xNN: what a terminal is
+/// given never holds a NUL byte or an escape sequence from a broken file.
+std::string printable(std::string_view text);
 
 }  // namespace sketchsurf::cli

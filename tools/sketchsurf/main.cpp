@@ -32,13 +32,13 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);  // prints help, version or the parse error
     return rc == 0 ? 0 : 2;
   } catch (const Error& e) {
-    std::cerr << "sketchsurf: error: " << e.what() << "\n";
+    std::cerr << "sketchsurf: error: " << cli::printable(e.what()) << "\n";
     return exit_code(e.kind());
   } catch (const std::bad_alloc&) {
     std::cerr << "sketchsurf: error: out of memory\n";
     return 4;
   } catch (const std::exception& e) {
-    std::cerr << "sketchsurf: error: " << e.what() << "\n";
+    std::cerr << "sketchsurf: error: " << cli::printable(e.what()) << "\n";
     return 4;
   }
   return 0;

@@ -6,11 +6,13 @@
 #include <memory>
 
 #include "tools/sketchsurf/commands.h"
+#include "tools/sketchsurf/run_files.h"
 
 namespace sketchsurf::cli {
 
 ProgressCallback stderr_progress(const GlobalOptions& global) {
-  if (global.quiet) return {};
+  // Ctrl-C stops the work at the next report, quiet or not.
+  if (global.quiet) return [](std::string_view, double) { return !cancel_requested(); };
   struct State {
     std::string stage;
     int last_step = -1;
@@ -34,19 +36,37 @@ ProgressCallback stderr_progress(const GlobalOptions& global) {
         state->last_step = step;
       }
     }
-    return true;
+    return !cancel_requested();
   };
 }
 
 void print_warnings(const GlobalOptions& global, const std::string& file, const Warnings& warnings) {
   if (global.quiet) return;
-  for (const auto& w : warnings) std::cerr << file << ": warning: " << w << "\n";
+  for (const auto& w : warnings) std::cerr << printable(file) << ": warning: " << printable(w) << "\n";
+}
+
+std::string printable(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 || c == '\n' || c == '\t') {
+      out += c;
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 15];
+    }
+  }
+  return out;
 }
 
 Sketch read_clean_sketch(const std::string& file, const GlobalOptions& global) {
   Warnings warnings;
   Sketch sketch = read_sketch(file, &warnings);
   print_warnings(global, file, warnings);
+  check_extent(sketch, file);
   const CleanReport cleaning = clean(sketch);
   if (!global.quiet)
     for (const auto& m : cleaning.messages) std::cerr << file << ": cleaned: " << m << "\n";
