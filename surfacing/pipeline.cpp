@@ -209,6 +209,14 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   Sketch measured = sketch;
   measured.mirror.reset();
   report.stroke_distance = stroke_distance(result.mesh, measured, report.diagonal);
+  t = Clock::now();
+  progress.update("checks", 0.0);
+  const bool open_expected = std::any_of(sketch.strokes.begin(), sketch.strokes.end(),
+                                         [](const Stroke& s) { return s.boundary; });
+  CheckOptions checks = params_.checks;
+  if (checks.threads == 0) checks.threads = params_.segment.threads;
+  report.checks = check_shape(result.mesh, result.labels, sketch, open_expected, checks);
+  report.checks_s = seconds_since(t);
   report.total_s = seconds_since(start);
   progress.update("done", 1.0);
   return result;

@@ -24,6 +24,7 @@
 #include "surfacing/mesh.h"
 #include "surfacing/progress.h"
 #include "surfacing/proxy/proxy.h"
+#include "surfacing/quality/checks.h"
 #include "surfacing/segment/pearl.h"
 #include "surfacing/sketch/sketch.h"
 
@@ -42,6 +43,7 @@ struct Params {
   ProxyOptions proxy;
   SegmentOptions segment;
   ExtractOptions extract;
+  CheckOptions checks;  ///< the report's shape checks (thresholds decide the warnings only)
 
   /// Sets parameters by dotted name ("segment.epsilon", "extract.gamma_2d"), as stored in
   /// Sketch::params. Throws Error (Usage) naming an unknown parameter (and listing the known
@@ -62,7 +64,9 @@ struct SurfaceReport {
   SegmentationSummary segmentation;
   ExtractSummary extraction;
   StrokeDistance stroke_distance;  ///< every non-ignored stroke point to the final mesh
-  double prepare_s = 0.0, proxy_s = 0.0, segment_s = 0.0, extraction_s = 0.0, total_s = 0.0;
+  ShapeChecks checks;              ///< signs of a wrong shape (quality/checks.h), with warnings
+  double prepare_s = 0.0, proxy_s = 0.0, segment_s = 0.0, extraction_s = 0.0, checks_s = 0.0,
+         total_s = 0.0;
 };
 
 /// The final mesh and what led to it.

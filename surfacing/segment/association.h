@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "surfacing/closest_face.h"
 #include "surfacing/mesh.h"
 #include "surfacing/sketch/sketch.h"
 
@@ -52,22 +53,6 @@ struct StrokeGraph {
   }
   /// N_p of Eq. 2: sum over vertices of |P_v|.
   std::size_t association_count() const { return point_indices.size(); }
-};
-
-/// Closest point on a triangle mesh, through an AABB tree built once.
-class ClosestFaceTree {
- public:
-  /// V: #V x 3 positions, F: #F x 3 triangles. Empty F gives a tree whose queries return -1.
-  ClosestFaceTree(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
-  ~ClosestFaceTree();
-  ClosestFaceTree(ClosestFaceTree&&) noexcept;
-  ClosestFaceTree& operator=(ClosestFaceTree&&) noexcept;
-  /// Index of the face closest to p (ties: lowest index) and, if given, the closest point.
-  int closest_face(const Eigen::Vector3d& p, Eigen::Vector3d* closest = nullptr) const;
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
 };
 
 /// c_e of App. C: the distance between the two vertices opposite edge e; on a border, twice the

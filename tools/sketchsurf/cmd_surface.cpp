@@ -136,12 +136,14 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                            {"p95", rep.stroke_distance.p95},
                            {"max", rep.stroke_distance.max},
                            {"points", rep.stroke_distance.points}}},
+      {"checks", checks_json(rep.checks)},
       {"timings", {{"prepare_s", rep.prepare_s},
                    {"proxy_s", rep.proxy_s},
                    {"association_s", seg.association_s},
                    {"init_s", seg.init_s},
                    {"segmentation_s", seg.segmentation_s},
                    {"extraction_s", rep.extraction_s},
+                   {"checks_s", rep.checks_s},
                    {"total_s", rep.total_s}}},
       {"peak_rss_mb", peak_rss_mb()}};
 }
@@ -216,6 +218,9 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     });
   }
   files.commit();
+  if (!global.quiet)
+    for (const std::string& warning : result.report.checks.warnings)
+      std::cerr << opt.sketch << ": warning: " << warning << "\n";
   if (!global.quiet)
     std::cerr << "surface: " << result.mesh.n_vertices() << " vertices, "
               << result.segmentation.models.size() << " regions, median stroke distance "

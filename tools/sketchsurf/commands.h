@@ -24,6 +24,12 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global);
 void add_segment_command(CLI::App& app, const GlobalOptions& global);
 /// `surface` (cmd_surface.cpp): the final piecewise-smooth surface, the whole method (paper §4-5).
 void add_surface_command(CLI::App& app, const GlobalOptions& global);
+/// `eval` (cmd_eval.cpp): a surface against its ground truth (accuracy, completeness, creases).
+void add_eval_command(CLI::App& app, const GlobalOptions& global);
+/// `synth` (cmd_synth.cpp): a synthetic sketch drawn on a mesh, clean or VR-like.
+void add_synth_command(CLI::App& app, const GlobalOptions& global);
+/// `review` (cmd_review.cpp): contact sheets and an index page; only with SKETCHSURF_ENGINE.
+void add_review_command(CLI::App& app, const GlobalOptions& global);
 /// `render` (cmd_render.cpp); only in builds with SKETCHSURF_ENGINE (SKETCHSURF_HAVE_ENGINE).
 void add_render_command(CLI::App& app, const GlobalOptions& global);
 

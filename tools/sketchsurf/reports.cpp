@@ -21,6 +21,21 @@ nlohmann::json models_json(const Segmentation& segmentation) {
   return models;
 }
 
+nlohmann::json checks_json(const ShapeChecks& c) {
+  return {{"far_5", c.far_5},
+          {"far_10", c.far_10},
+          {"beyond", c.beyond},
+          {"outside_box", c.outside_box},
+          {"components", c.components},
+          {"genus", c.genus},
+          {"boundary_loops", c.boundary_loops},
+          {"self_intersections", c.self_intersections},
+          {"regions", c.regions},
+          {"border_length", c.border_length},
+          {"border_ratio", c.border_ratio},
+          {"warnings", c.warnings}};
+}
+
 double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

@@ -3,12 +3,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "surfacing/quality/checks.h"
 #include "surfacing/segment/pearl.h"
 
 namespace sketchsurf::cli {
 
 /// The region models: [{label, degree, vertices, center, scale, coefficients}], input units.
 nlohmann::json models_json(const Segmentation& segmentation);
+
+/// The shape checks: {far_5, far_10, beyond, outside_box, components, genus, boundary_loops,
+/// self_intersections, regions, border_length, border_ratio, warnings}.
+nlohmann::json checks_json(const ShapeChecks& checks);
 
 /// Peak resident set size of this process so far, in MiB.
 double peak_rss_mb();

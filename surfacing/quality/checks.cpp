@@ -1,0 +1,270 @@
+#include "surfacing/quality/checks.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <unordered_map>
+
+#include "surfacing/closest_face.h"
+#include "surfacing/parallel.h"
+#include "surfacing/proxy/proxy.h"
+#include "surfacing/quality/sampling.h"
+
+namespace sketchsurf {
+
+namespace {
+
+using V3 = Eigen::Vector3d;
+
+// The non-ignored strokes (and their mirror images when the sketch has a mirror plane) as
+// segments, i.e. degenerate triangles (a, b, b) for a closest-point tree, and their box.
+struct StrokeSegments {
+  Eigen::MatrixX3d V;
+  Eigen::MatrixX3i F;
+  BoundingBox box;
+};
+
+StrokeSegments stroke_segments(const Sketch& sketch) {
+  std::vector<V3> points;
+  std::vector<Eigen::Vector3i> segments;
+  StrokeSegments out;
+  for (int copy = 0; copy < (sketch.mirror ? 2 : 1); ++copy)
+    for (const Stroke& s : sketch.strokes) {
+      if (s.ignored || s.points.empty()) continue;
+      const int first = static_cast<int>(points.size());
+      for (const V3& p : s.points) {
+        points.push_back(copy == 1 ? sketch.mirror->reflect(p) : p);
+        out.box.extend(points.back());
+      }
+      const int n = static_cast<int>(s.points.size());
+      if (n == 1) segments.emplace_back(first, first, first);
+      for (int i = 0; i + 1 < n; ++i) segments.emplace_back(first + i, first + i + 1, first + i + 1);
+    }
+  out.V.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) out.V.row(static_cast<Eigen::Index>(i)) = points[i];
+  out.F.resize(static_cast<Eigen::Index>(segments.size()), 3);
+  for (std::size_t i = 0; i < segments.size(); ++i) out.F.row(static_cast<Eigen::Index>(i)) = segments[i];
+  return out;
+}
+
+// Whether segment pq crosses triangle abc (Moller-Trumbore; a segment in the triangle's plane
+// does not count).
+bool segment_hits_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  const V3 d = q - p, e1 = b - a, e2 = c - a;
+  const V3 h = d.cross(e2);
+  const double det = e1.dot(h);
+  const double scale = e1.norm() * e2.norm() * d.norm();
+  if (!(std::abs(det) > 1e-12 * scale)) return false;
+  const V3 s = p - a;
+  const double u = s.dot(h) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const V3 r = s.cross(e1);
+  const double v = d.dot(r) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  const double t = e2.dot(r) / det;
+  return t >= 0.0 && t <= 1.0;
+}
+
+bool triangles_cross(const std::array<V3, 3>& A, const std::array<V3, 3>& B) {
+  for (int i = 0; i < 3; ++i) {
+    if (segment_hits_triangle(A[i], A[(i + 1) % 3], B[0], B[1], B[2])) return true;
+    if (segment_hits_triangle(B[i], B[(i + 1) % 3], A[0], A[1], A[2])) return true;
+  }
+  return false;
+}
+
+// The curves between regions, traced through the midpoints of the edges whose two vertices have
+// different labels (two such edges of a face are joined): their length, and their length after
+// smoothing the inner points of every chain (ends and junctions fixed).
+std::pair<double, double> border_lengths(const TriMesh& mesh, const std::vector<int>& labels) {
+  std::unordered_map<int, int> node_of_edge;
+  std::vector<V3> nodes;
+  std::vector<std::array<int, 2>> links;
+  const auto node = [&](TriMesh::EdgeHandle e) {
+    const auto [it, added] = node_of_edge.emplace(e.idx(), static_cast<int>(nodes.size()));
+    if (added) {
+      const auto h = mesh.halfedge_handle(e, 0);
+      nodes.push_back(0.5 * (to_eigen(mesh.point(mesh.from_vertex_handle(h))) +
+                             to_eigen(mesh.point(mesh.to_vertex_handle(h)))));
+    }
+    return it->second;
+  };
+  for (auto f : mesh.faces()) {
+    std::vector<int> crossing;
+    for (auto h : mesh.fh_range(f))
+      if (labels[mesh.from_vertex_handle(h).idx()] != labels[mesh.to_vertex_handle(h).idx()])
+        crossing.push_back(node(mesh.edge_handle(h)));
+    for (std::size_t i = 0; i < crossing.size(); ++i)
+      for (std::size_t j = i + 1; j < crossing.size(); ++j) links.push_back({crossing[i], crossing[j]});
+  }
+  const auto length = [&](const std::vector<V3>& at) {
+    double sum = 0.0;
+    for (const auto& [a, b] : links) sum += (at[a] - at[b]).norm();
+    return sum;
+  };
+  std::vector<std::vector<int>> neighbours(nodes.size());
+  for (const auto& [a, b] : links) {
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+  std::vector<V3> smooth = nodes;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    std::vector<V3> next = smooth;
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (neighbours[i].size() == 2)
+        next[i] = 0.5 * smooth[i] + 0.25 * (smooth[neighbours[i][0]] + smooth[neighbours[i][1]]);
+    smooth = std::move(next);
+  }
+  return {length(nodes), length(smooth)};
+}
+
+// Whether the stroke points within `reach` of p surround it, seen along the surface (normal n):
+// their directions in the tangent plane leave no open angle over 180 degrees.
+bool surrounded(const V3& p, const V3& n, const Eigen::MatrixX3d& points, double reach) {
+  const V3 u = n.unitOrthogonal(), w = n.cross(u);
+  std::vector<double> angles;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const V3 d = V3(points.row(i)) - p;
+    if (d.squaredNorm() > reach * reach) continue;
+    const double x = d.dot(u), y = d.dot(w);
+    if (x * x + y * y > 0.0) angles.push_back(std::atan2(y, x));
+  }
+  if (angles.size() < 3) return false;
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + 2 * M_PI - angles.back();
+  for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+  return gap <= M_PI;
+}
+
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f%%", 100.0 * fraction);
+  return text;
+}
+
+}  // namespace
+
+std::size_t count_self_intersections(const TriMesh& mesh) {
+  const Eigen::MatrixX3d V = vertex_matrix(mesh);
+  const Eigen::MatrixX3i F = face_matrix(mesh);
+  if (F.rows() < 2) return 0;
+  double edge_sum = 0.0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) edge_sum += (V.row(F(f, k)) - V.row(F(f, (k + 1) % 3))).norm();
+  const double cell = std::max(2.0 * edge_sum / (3.0 * static_cast<double>(F.rows())), 1e-300);
+  const V3 origin = V.colwise().minCoeff();
+  const auto cell_of = [&](const V3& p) {
+    return ((p - origin) / cell).array().floor().cast<long long>().matrix().eval();
+  };
+  const auto key = [](const Eigen::Matrix<long long, 3, 1>& c) {
+    return static_cast<std::uint64_t>(c.x()) * 73856093ull ^ static_cast<std::uint64_t>(c.y()) * 19349663ull ^
+           static_cast<std::uint64_t>(c.z()) * 83492791ull;
+  };
+  std::vector<V3> lo(static_cast<std::size_t>(F.rows())), hi(lo.size());
+  std::unordered_map<std::uint64_t, std::vector<int>> grid;
+  for (int f = 0; f < F.rows(); ++f) {
+    lo[f] = V.row(F(f, 0)).cwiseMin(V.row(F(f, 1))).cwiseMin(V.row(F(f, 2)));
+    hi[f] = V.row(F(f, 0)).cwiseMax(V.row(F(f, 1))).cwiseMax(V.row(F(f, 2)));
+    const auto c0 = cell_of(lo[f]), c1 = cell_of(hi[f]);
+    for (long long x = c0.x(); x <= c1.x(); ++x)
+      for (long long y = c0.y(); y <= c1.y(); ++y)
+        for (long long z = c0.z(); z <= c1.z(); ++z) grid[key({x, y, z})].push_back(f);
+  }
+  std::size_t count = 0;
+  for (const auto& [cell_key, faces] : grid)
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for (std::size_t j = i + 1; j < faces.size(); ++j) {
+        const int a = faces[i], b = faces[j];
+        if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
+        // Count the pair in one cell only: the one holding the low corner of the boxes' overlap.
+        if (key(cell_of(lo[a].cwiseMax(lo[b]))) != cell_key) continue;
+        bool shared = false;
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l) shared |= F(a, k) == F(b, l);
+        if (shared) continue;
+        const std::array<V3, 3> A = {V.row(F(a, 0)), V.row(F(a, 1)), V.row(F(a, 2))};
+        const std::array<V3, 3> B = {V.row(F(b, 0)), V.row(F(b, 1)), V.row(F(b, 2))};
+        count += triangles_cross(A, B);
+      }
+  return count;
+}
+
+ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, const Sketch& sketch,
+                        bool open_expected, const CheckOptions& options) {
+  ShapeChecks out;
+  const MeshTopology topology = mesh_topology(mesh);
+  out.components = topology.components;
+  out.genus = topology.genus;
+  out.boundary_loops = topology.boundary_loops;
+  out.self_intersections = count_self_intersections(mesh);
+
+  const StrokeSegments strokes = stroke_segments(sketch);
+  const double diagonal = strokes.box.diagonal();
+  const SurfaceSamples samples = sample_surface(mesh, options.samples, options.seed);
+  if (strokes.F.rows() > 0 && diagonal > 0.0 && samples.points.rows() > 0) {
+    const ClosestFaceTree tree(strokes.V, strokes.F);
+    const std::size_t n = static_cast<std::size_t>(samples.points.rows());
+    std::vector<double> distance(n);
+    parallel_for(0, n, options.threads, [&](std::size_t i) {
+      const V3 p = samples.points.row(static_cast<Eigen::Index>(i));
+      V3 q;
+      tree.closest_face(p, &q);
+      distance[i] = (q - p).norm() / diagonal;
+    });
+    const V3 margin = V3::Constant(options.box_margin * diagonal);
+    // Only the samples far from every stroke need the (slower) surround test.
+    std::vector<char> beyond(n, 0);
+    parallel_for(0, n, options.threads, [&](std::size_t i) {
+      if (!(distance[i] > 0.05)) return;
+      const auto f = mesh.face_handle(samples.faces[i]);
+      beyond[i] = !surrounded(samples.points.row(static_cast<Eigen::Index>(i)),
+                              to_eigen(mesh.calc_face_normal(f)), strokes.V, options.reach * diagonal);
+    });
+    std::size_t far_5 = 0, far_10 = 0, outside = 0, beyond_count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      beyond_count += beyond[i];
+      far_5 += distance[i] > 0.05;
+      far_10 += distance[i] > 0.10;
+      const V3 p = samples.points.row(static_cast<Eigen::Index>(i));
+      outside += (p.array() < (strokes.box.min - margin).array()).any() ||
+                 (p.array() > (strokes.box.max + margin).array()).any();
+    }
+    out.far_5 = static_cast<double>(far_5) / static_cast<double>(n);
+    out.far_10 = static_cast<double>(far_10) / static_cast<double>(n);
+    out.beyond = static_cast<double>(beyond_count) / static_cast<double>(n);
+    out.outside_box = static_cast<double>(outside) / static_cast<double>(n);
+  }
+  if (labels.size() == mesh.n_vertices() && !labels.empty()) {
+    std::vector<int> distinct = labels;
+    std::sort(distinct.begin(), distinct.end());
+    out.regions = static_cast<std::size_t>(std::unique(distinct.begin(), distinct.end()) - distinct.begin());
+    const auto [raw, smooth] = border_lengths(mesh, labels);
+    if (diagonal > 0.0) out.border_length = raw / diagonal;
+    out.border_ratio = smooth > 0.0 ? raw / smooth : 1.0;
+  }
+
+  if (out.beyond > options.warn_beyond)
+    out.warnings.push_back(percent(out.beyond) + " of the surface runs out beyond the strokes (farther "
+                           "than 5% of the diagonal from every stroke, with no stroke on one side): a "
+                           "sheet or fin where nothing was drawn?");
+  if (out.outside_box > options.warn_outside)
+    out.warnings.push_back(percent(out.outside_box) + " of the surface lies outside the strokes' bounding box");
+  if (out.genus > options.warn_genus)
+    out.warnings.push_back("the surface has genus " + std::to_string(out.genus) +
+                           " (that many handles): spurious tunnels between strokes?");
+  if (out.boundary_loops > 0 && !open_expected)
+    out.warnings.push_back("the surface has " + std::to_string(out.boundary_loops) +
+                           " hole(s) although no boundary stroke was marked");
+  if (out.self_intersections > 0)
+    out.warnings.push_back(std::to_string(out.self_intersections) + " pairs of triangles intersect");
+  if (out.border_ratio > options.warn_border) {
+    char ratio[16];
+    std::snprintf(ratio, sizeof ratio, "%.2f", out.border_ratio);
+    out.warnings.push_back(std::string("region borders are ragged (") + ratio +
+                           " times the length of smoothed borders)");
+  }
+  return out;
+}
+
+}  // namespace sketchsurf

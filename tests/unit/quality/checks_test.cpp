@@ -1,0 +1,145 @@
+// Shape checks: a clean sphere passes them all; a sheet far from the strokes, a surface outside
+// the strokes' box, crossing triangles, holes, handles and ragged region borders are flagged.
+
+#include <gtest/gtest.h>
+
+#include "surfacing/quality/checks.h"
+#include "tests/support/shapes.h"
+
+namespace sketchsurf {
+namespace {
+
+// `b` added to `a` as another component.
+TriMesh joined(TriMesh a, const TriMesh& b) {
+  std::vector<TriMesh::VertexHandle> map;
+  for (auto v : b.vertices()) map.push_back(a.add_vertex(b.point(v)));
+  for (auto f : b.faces()) {
+    std::vector<TriMesh::VertexHandle> corners;
+    for (auto v : b.fv_range(f)) corners.push_back(map[v.idx()]);
+    a.add_face(corners);
+  }
+  return a;
+}
+
+// A flat square sheet of n x n quads in the plane z = height, centred at (cx, 0).
+TriMesh sheet(double cx, double half, double height, int n) {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> v;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      v.push_back(mesh.add_vertex({cx - half + 2 * half * i / n, -half + 2 * half * j / n, height}));
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const auto a = v[j * (n + 1) + i], b = v[j * (n + 1) + i + 1], c = v[(j + 1) * (n + 1) + i + 1],
+                 d = v[(j + 1) * (n + 1) + i];
+      mesh.add_face(a, b, c);
+      mesh.add_face(a, c, d);
+    }
+  return mesh;
+}
+
+std::vector<int> split_by_z(const TriMesh& mesh) {
+  std::vector<int> labels;
+  for (auto v : mesh.vertices()) labels.push_back(mesh.point(v)[2] > 0 ? 1 : 0);
+  return labels;
+}
+
+TEST(ShapeChecks, ASphereOnItsStrokesPassesEveryCheck) {
+  const TriMesh mesh = testing::icosphere(4, 0.5);
+  const ShapeChecks c = check_shape(mesh, split_by_z(mesh), testing::sphere_sketch(0.5, 6), false);
+  EXPECT_EQ(c.far_10, 0.0);
+  EXPECT_EQ(c.outside_box, 0.0);
+  EXPECT_EQ(c.genus, 0);
+  EXPECT_EQ(c.components, 1u);
+  EXPECT_EQ(c.boundary_loops, 0u);
+  EXPECT_EQ(c.self_intersections, 0u);
+  EXPECT_EQ(c.regions, 2u);
+  EXPECT_LT(c.border_ratio, 1.2);
+  EXPECT_TRUE(c.warnings.empty()) << c.warnings.front();
+}
+
+TEST(ShapeChecks, ASheetWhereNoStrokeIsIsFlagged) {
+  // The sphere's strokes span [-0.5, 0.5]^3; a 3 x 3 sheet through the equator runs far beyond.
+  const TriMesh mesh = joined(testing::icosphere(3, 0.5), sheet(0.0, 1.5, 0.0, 30));
+  const ShapeChecks c = check_shape(mesh, {}, testing::sphere_sketch(0.5, 6), false);
+  EXPECT_GT(c.far_10, 0.3);
+  EXPECT_GT(c.beyond, 0.3);
+  EXPECT_GT(c.outside_box, 0.5);
+  EXPECT_GT(c.self_intersections, 0u);  // the sheet cuts through the sphere
+  EXPECT_EQ(c.boundary_loops, 1u);
+  EXPECT_EQ(c.regions, 0u);
+  ASSERT_GE(c.warnings.size(), 4u);
+  EXPECT_NE(c.warnings[0].find("beyond the strokes"), std::string::npos) << c.warnings[0];
+  EXPECT_NE(c.warnings[1].find("outside the strokes' bounding box"), std::string::npos) << c.warnings[1];
+}
+
+TEST(ShapeChecks, HolesAreExpectedWhenBoundaryStrokesAreMarked) {
+  // A unit square sheet drawn as a grid of 5 x 5 lines, its border included.
+  const TriMesh mesh = sheet(0.0, 0.5, 0.0, 10);
+  Sketch sketch;
+  for (double t = -0.5; t <= 0.5 + 1e-9; t += 0.25) {
+    sketch.strokes.push_back(testing::sample_curve([t](double u) { return Eigen::Vector3d(t, u, 0); }, -0.5, 0.5, 0.02));
+    sketch.strokes.push_back(testing::sample_curve([t](double u) { return Eigen::Vector3d(u, t, 0); }, -0.5, 0.5, 0.02));
+  }
+  const ShapeChecks closed = check_shape(mesh, {}, sketch, false);
+  EXPECT_EQ(closed.far_10, 0.0);
+  EXPECT_EQ(closed.beyond, 0.0);
+  ASSERT_EQ(closed.warnings.size(), 1u);
+  EXPECT_NE(closed.warnings[0].find("1 hole(s)"), std::string::npos) << closed.warnings[0];
+  EXPECT_TRUE(check_shape(mesh, {}, sketch, true).warnings.empty());
+}
+
+TEST(ShapeChecks, FacesFramedBySparseStrokesAreNotBeyondThem) {
+  // The cube of the bundled example (one stroke across each face): parts of the faces are over
+  // 10% of the diagonal from every stroke, but strokes frame them.
+  const TriMesh mesh = testing::rounded_box_mesh(4, Eigen::Vector3d(0.5, 0.5, 0.5), 0.0);
+  const ShapeChecks c = check_shape(mesh, {}, testing::cube_sketch(1.0, true), false);
+  EXPECT_GT(c.far_10, 0.05);
+  EXPECT_EQ(c.beyond, 0.0);
+  EXPECT_TRUE(c.warnings.empty()) << c.warnings.front();
+}
+
+TEST(ShapeChecks, HandlesAboveTheLimitAreFlagged) {
+  const TriMesh torus = testing::torus_mesh(48, 16, 0.5, 0.2);
+  const ShapeChecks c = check_shape(torus, {}, testing::torus_sketch(0.5, 0.2, 8), false);
+  EXPECT_EQ(c.genus, 1);
+  EXPECT_TRUE(c.warnings.empty());
+  CheckOptions strict;
+  strict.warn_genus = 0;
+  const ShapeChecks s = check_shape(torus, {}, testing::torus_sketch(0.5, 0.2, 8), false, strict);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("genus 1"), std::string::npos);
+}
+
+TEST(ShapeChecks, MirroredSketchesCountTheReflectedStrokes) {
+  // Strokes on one half of the sphere only, with a mirror plane x = 0: the other half is not far.
+  Sketch half = testing::sphere_sketch(0.5, 6);
+  for (Stroke& s : half.strokes)
+    std::erase_if(s.points, [](const Eigen::Vector3d& p) { return p.x() < -1e-9; });
+  std::erase_if(half.strokes, [](const Stroke& s) { return s.points.size() < 2; });
+  const TriMesh mesh = testing::icosphere(3, 0.5);
+  EXPECT_GT(check_shape(mesh, {}, half, false).outside_box, 0.2);
+  half.mirror = Plane{Eigen::Vector3d::UnitX(), 0.0};
+  EXPECT_EQ(check_shape(mesh, {}, half, false).outside_box, 0.0);
+}
+
+TEST(ShapeChecks, RaggedRegionBordersHaveALargeRatio) {
+  const TriMesh mesh = testing::icosphere(4, 0.5);
+  std::vector<int> ragged = split_by_z(mesh);
+  // Flip every other vertex in a band around the equator: a zig-zag border.
+  for (auto v : mesh.vertices())
+    if (std::abs(mesh.point(v)[2]) < 0.08 && v.idx() % 2 == 0) ragged[v.idx()] = 1 - ragged[v.idx()];
+  const ShapeChecks c = check_shape(mesh, ragged, testing::sphere_sketch(0.5, 6), false);
+  EXPECT_GT(c.border_ratio, 1.35);
+  EXPECT_FALSE(c.warnings.empty());
+}
+
+TEST(ShapeChecks, SelfIntersectionsOfTwoOverlappingSpheres) {
+  const TriMesh one = testing::icosphere(2, 0.5);
+  EXPECT_EQ(count_self_intersections(one), 0u);
+  EXPECT_GT(count_self_intersections(joined(one, testing::icosphere(2, 0.5, Eigen::Vector3d(0.5, 0, 0)))), 0u);
+  EXPECT_EQ(count_self_intersections(joined(one, testing::icosphere(2, 0.5, Eigen::Vector3d(1.2, 0, 0)))), 0u);
+}
+
+}  // namespace
+}  // namespace sketchsurf
