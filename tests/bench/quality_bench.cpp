@@ -1,0 +1,133 @@
+// The ground-truth suite (tests/support/truth_suite.h) sketched in both styles (synthesize_sketch:
+// clean curve network and VR-like) and surfaced with the default parameters: how far the final
+// surface and the proxy alone lie from the true surface, how much of the truth they cover, the
+// creases found, the shape checks and the time. One Markdown table on stdout, medians at the end;
+// docs/quality.md keeps the output of each change that matters.
+//   quality_bench [--cases box,mug,...] [--styles net,vr] [--restarts N] [--seed N]
+// Deviations are fractions of the truth's bounding-box diagonal, in percent.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "surfacing/error.h"
+#include "surfacing/pipeline.h"
+#include "surfacing/proxy/proxy.h"
+#include "surfacing/quality/eval.h"
+#include "surfacing/quality/synth.h"
+#include "tests/support/truth_suite.h"
+
+namespace {
+
+using namespace sketchsurf;
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[(v.size() - 1) / 2] * 0.5 + v[v.size() / 2] * 0.5;
+}
+
+std::string pct(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", 100.0 * fraction);
+  return text;
+}
+
+struct Row {
+  double proxy_median, proxy_p95, median, p95, p99, max, complete_median, complete_p95, seconds;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> cases = testing::truth_shape_names();
+  std::vector<std::string> styles = {"net", "vr"};
+  Params params;
+  unsigned seed = 1;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--cases")) cases = split(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--styles")) styles = split(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--restarts")) params.segment.restarts = std::stoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seed")) seed = static_cast<unsigned>(std::stoul(argv[i + 1]));
+    else {
+      std::cerr << "quality_bench: unknown option " << argv[i] << "\n";
+      return 2;
+    }
+  }
+
+  std::cout << "| case | style | strokes | proxy acc. median | proxy acc. p95 | acc. median | acc. p95 "
+               "| acc. p99 | acc. max | compl. median | compl. p95 | creases found | crease err. "
+               "median (deg) | regions | genus true/proxy/final | beyond | worse than proxy | s |\n"
+            << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<Row> rows;
+  int worse_count = 0, failures = 0;
+  for (const std::string& name : cases) {
+    const testing::TruthShape truth = testing::truth_shape(name);
+    for (const std::string& style : styles) {
+      SynthOptions synth;
+      synth.style = style == "vr" ? SynthOptions::Style::Vr : SynthOptions::Style::Net;
+      synth.seed = seed;
+      const Sketch sketch = synthesize_sketch(truth.mesh, synth);
+      std::cout << "| " << name << " | " << style << " | " << sketch.strokes.size() << " | ";
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        const SurfaceResult result = Surfacer(params).run(sketch);
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const Evaluation final_eval = evaluate(result.mesh, truth.mesh);
+        const Evaluation proxy_eval = evaluate(result.proxy, truth.mesh);
+        const Row row{proxy_eval.accuracy.median, proxy_eval.accuracy.p95, final_eval.accuracy.median,
+                      final_eval.accuracy.p95,    final_eval.accuracy.p99, final_eval.accuracy.max,
+                      final_eval.completeness.median, final_eval.completeness.p95, seconds};
+        rows.push_back(row);
+        const bool worse = row.median > row.proxy_median || row.p95 > row.proxy_p95;
+        worse_count += worse;
+        char creases[64] = "-", error[32] = "-";
+        if (final_eval.creases.sharp_edges > 0) {
+          std::snprintf(creases, sizeof creases, "%.0f%%", 100.0 * final_eval.creases.found);
+          if (final_eval.creases.error.count > 0)
+            std::snprintf(error, sizeof error, "%.1f", final_eval.creases.error.median);
+        }
+        std::cout << pct(row.proxy_median) << " | " << pct(row.proxy_p95) << " | " << pct(row.median)
+                  << " | " << pct(row.p95) << " | " << pct(row.p99) << " | " << pct(row.max) << " | "
+                  << pct(row.complete_median) << " | " << pct(row.complete_p95) << " | " << creases
+                  << " | " << error << " | " << result.segmentation.models.size() << " | "
+                  << truth.genus << "/" << result.report.proxy.topology.genus << "/"
+                  << result.report.checks.genus << " | " << pct(result.report.checks.beyond) << "% | "
+                  << (worse ? "**yes**" : "no") << " | ";
+        std::printf("%.1f |\n", seconds);
+        std::fflush(stdout);
+      } catch (const Error& e) {
+        ++failures;
+        std::cout << "failed: " << e.what() << " |||||||||||||||\n";
+      }
+    }
+  }
+  const auto column = [&](double Row::*field) {
+    std::vector<double> v;
+    for (const Row& r : rows) v.push_back(r.*field);
+    return median(v);
+  };
+  std::cout << "\nMedians over " << rows.size() << " runs (" << failures << " failed), percent of the diagonal: "
+            << "proxy accuracy median " << pct(column(&Row::proxy_median)) << ", p95 "
+            << pct(column(&Row::proxy_p95)) << "; final accuracy median " << pct(column(&Row::median))
+            << ", p95 " << pct(column(&Row::p95)) << ", p99 " << pct(column(&Row::p99)) << ", max "
+            << pct(column(&Row::max)) << "; completeness median " << pct(column(&Row::complete_median))
+            << ", p95 " << pct(column(&Row::complete_p95)) << "; final worse than the proxy (median or "
+            << "p95) in " << worse_count << " runs; time median ";
+  std::printf("%.1f s\n", column(&Row::seconds));
+  return failures == 0 ? 0 : 1;
+}
