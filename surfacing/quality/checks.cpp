@@ -256,8 +256,9 @@ ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, con
   if (out.boundary_loops > 0 && !open_expected)
     out.warnings.push_back("the surface has " + std::to_string(out.boundary_loops) +
                            " hole(s) although no boundary stroke was marked");
-  if (out.self_intersections > 0)
-    out.warnings.push_back(std::to_string(out.self_intersections) + " pairs of triangles intersect");
+  if (static_cast<double>(out.self_intersections) > options.warn_crossing * static_cast<double>(mesh.n_faces()))
+    out.warnings.push_back(std::to_string(out.self_intersections) + " pairs of triangles intersect "
+                           "(the surface passes through itself)");
   if (out.border_ratio > options.warn_border) {
     char ratio[16];
     std::snprintf(ratio, sizeof ratio, "%.2f", out.border_ratio);

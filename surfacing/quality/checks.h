@@ -23,6 +23,8 @@ struct CheckOptions {
   double warn_outside = 0.01;   ///< warn when more than this fraction lies outside the grown box
   double warn_border = 1.35;    ///< warn when region borders are this much longer than smoothed
   long warn_genus = 4;          ///< warn when the genus exceeds this
+  double warn_crossing = 0.01;  ///< warn when crossing triangle pairs exceed this fraction of the
+                                ///< triangles (a few stray pairs where thin parts touch are common)
   unsigned seed = 1;
   unsigned threads = 0;         ///< 0 = all; the result does not depend on it
 };
