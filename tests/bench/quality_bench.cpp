@@ -1,4 +1,5 @@
-// The ground-truth suite (tests/support/truth_suite.h) sketched in both styles (synthesize_sketch:
+// The ground-truth suite (tests/support/truth_suite.h) and the real meshes of ../shared/data/gt
+// (`gt/NAME` cases) sketched in both styles (synthesize_sketch:
 // clean curve network and VR-like) and surfaced with the default parameters: how far the final
 // surface and the proxy alone lie from the true surface, how much of the truth they cover, the
 // creases found, the shape checks and the time. One Markdown table on stdout, medians at the end;
@@ -10,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -20,6 +22,7 @@
 #include "surfacing/proxy/proxy.h"
 #include "surfacing/quality/eval.h"
 #include "surfacing/quality/synth.h"
+#include "surfacing/sketch/io/mesh_io.h"
 #include "tests/support/truth_suite.h"
 
 namespace {
@@ -46,6 +49,13 @@ std::string pct(double fraction) {
   return text;
 }
 
+// The true mesh of a case: a suite shape, or gt/NAME = SKETCHSURF_DATA_DIR/gt/NAME.ply.
+TriMesh truth_mesh(const std::string& name) {
+  if (name.rfind("gt/", 0) == 0)
+    return read_mesh(std::filesystem::path(SKETCHSURF_DATA_DIR) / (name + ".ply"));
+  return testing::truth_shape(name).mesh;
+}
+
 struct Row {
   double proxy_median, proxy_p95, median, p95, p99, max, complete_median, complete_p95, seconds;
 };
@@ -54,6 +64,14 @@ struct Row {
 
 int main(int argc, char** argv) {
   std::vector<std::string> cases = testing::truth_shape_names();
+  const std::filesystem::path gt = std::filesystem::path(SKETCHSURF_DATA_DIR) / "gt";
+  if (std::filesystem::is_directory(gt)) {
+    std::vector<std::string> real;
+    for (const auto& entry : std::filesystem::directory_iterator(gt))
+      if (entry.path().extension() == ".ply") real.push_back("gt/" + entry.path().stem().string());
+    std::sort(real.begin(), real.end());
+    cases.insert(cases.end(), real.begin(), real.end());
+  }
   std::vector<std::string> styles = {"net", "vr"};
   Params params;
   unsigned seed = 1;
@@ -75,20 +93,21 @@ int main(int argc, char** argv) {
   std::vector<Row> rows;
   int worse_count = 0, failures = 0;
   for (const std::string& name : cases) {
-    const testing::TruthShape truth = testing::truth_shape(name);
+    const TriMesh truth = truth_mesh(name);
+    const MeshTopology truth_topology = mesh_topology(truth);
     for (const std::string& style : styles) {
       SynthOptions synth;
       synth.style = style == "vr" ? SynthOptions::Style::Vr : SynthOptions::Style::Net;
       synth.seed = seed;
-      const Sketch sketch = synthesize_sketch(truth.mesh, synth);
+      const Sketch sketch = synthesize_sketch(truth, synth);
       std::cout << "| " << name << " | " << style << " | " << sketch.strokes.size() << " | ";
       const auto start = std::chrono::steady_clock::now();
       try {
         const SurfaceResult result = Surfacer(params).run(sketch);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const Evaluation final_eval = evaluate(result.mesh, truth.mesh);
-        const Evaluation proxy_eval = evaluate(result.proxy, truth.mesh);
+        const Evaluation final_eval = evaluate(result.mesh, truth);
+        const Evaluation proxy_eval = evaluate(result.proxy, truth);
         const Row row{proxy_eval.accuracy.median, proxy_eval.accuracy.p95, final_eval.accuracy.median,
                       final_eval.accuracy.p95,    final_eval.accuracy.p99, final_eval.accuracy.max,
                       final_eval.completeness.median, final_eval.completeness.p95, seconds};
@@ -105,7 +124,7 @@ int main(int argc, char** argv) {
                   << " | " << pct(row.p95) << " | " << pct(row.p99) << " | " << pct(row.max) << " | "
                   << pct(row.complete_median) << " | " << pct(row.complete_p95) << " | " << creases
                   << " | " << error << " | " << result.segmentation.models.size() << " | "
-                  << truth.genus << "/" << result.report.proxy.topology.genus << "/"
+                  << truth_topology.genus << "/" << result.report.proxy.topology.genus << "/"
                   << result.report.checks.genus << " | " << pct(result.report.checks.beyond) << "% | "
                   << (worse ? "**yes**" : "no") << " | ";
         std::printf("%.1f |\n", seconds);
