@@ -45,7 +45,7 @@ StrokeDistance stroke_distance(const TriMesh& mesh, const Sketch& sketch, double
 
 /// What extract() did.
 struct ExtractSummary {
-  OptimizeSummary optimization;         ///< the Ceres solve of E_mesh
+  OptimizeSummary optimization;         ///< the solve of E_mesh
   std::size_t proxy_vertices = 0;
   std::size_t trimmed_faces = 0;        ///< proxy faces removed by the open-surface cut
   std::size_t seam_vertices = 0;        ///< inserted vertices with 2 labels

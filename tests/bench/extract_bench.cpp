@@ -3,13 +3,16 @@
 // under 3 s on 2 cores). The default (projection, 5 local-global iterations, Jacobi-scaled L-BFGS
 // until E_mesh falls by less than 5% over 50 iterations, at most 300) is measured next to the
 // previous stop (300 iterations, global steps to 1e-2), the same L-BFGS without the local-global
-// start and with 500 iterations, and the trust-region solvers of MeshSolver on the smaller mesh
-// (minutes on the larger one); the choice is documented in optimize.h. Run:
+// start and with 500 iterations, and Ceres' trust-region solvers (trust_region.h) on the smaller mesh
+// (minutes on the larger one); the choice is documented in docs/performance.md. Run:
 // extract_bench --benchmark_repetitions=3; peak RSS with /usr/bin/time -v.
 
 #include <benchmark/benchmark.h>
 
+#include <optional>
+
 #include "surfacing/extract/extract.h"
+#include "surfacing/extract/trust_region.h"
 #include "tests/support/shapes.h"
 #include "tests/unit/extract/fixtures.h"
 
@@ -28,6 +31,7 @@ void BM_OptimizeMesh(benchmark::State& state) {
   const auto models = testing::box_models(half);
   const LabeledMesh seamed = insert_seams(proxy, testing::box_labels(proxy, half), models);
   MeshEnergyOptions options;
+  std::optional<TrustRegionSolver> trust_region;
   switch (static_cast<Setting>(state.range(1))) {
     case Setting::Default:
       break;
@@ -40,10 +44,10 @@ void BM_OptimizeMesh(benchmark::State& state) {
       options.max_iterations = 500;
       break;
     case Setting::SparseCholesky:
-      options.solver = MeshSolver::SparseCholesky;
+      trust_region = TrustRegionSolver::SparseCholesky;
       break;
     case Setting::ConjugateGradients:
-      options.solver = MeshSolver::ConjugateGradients;
+      trust_region = TrustRegionSolver::ConjugateGradients;
       break;
   }
   options.threads = 2;
@@ -53,7 +57,8 @@ void BM_OptimizeMesh(benchmark::State& state) {
     state.PauseTiming();
     mesh = seamed;
     state.ResumeTiming();
-    summary = optimize_mesh(mesh, models, {}, options);
+    summary = trust_region ? optimize_mesh_trust_region(mesh, models, {}, options, *trust_region)
+                           : optimize_mesh(mesh, models, {}, options);
     benchmark::DoNotOptimize(mesh.mesh.n_vertices());
   }
   double worst = 0.0;  // distance of the result to the cube

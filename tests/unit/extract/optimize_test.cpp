@@ -8,7 +8,10 @@
 #include <memory>
 
 #include "surfacing/error.h"
+#include "surfacing/extract/energy.h"
+#include "surfacing/extract/global_step.h"
 #include "surfacing/extract/seams.h"
+#include "surfacing/extract/trust_region.h"
 #include "tests/support/shapes.h"
 #include "tests/unit/extract/fixtures.h"
 
@@ -40,7 +43,7 @@ ImplicitModel cubic_model() {
 
 TEST(MeshEnergyTerms, JacobiansMatchNumericDerivatives) {
   const ImplicitModel model = cubic_model();
-  std::unique_ptr<ceres::CostFunction> project(detail::ProjectionResidual::Create(model, 0.5, 1e-6));
+  std::unique_ptr<ceres::CostFunction> project(detail::make_projection_cost(model, 0.5, 1e-6));
   expect_jacobians_match(*project, {{0.3, 0.1, -0.4}});
   expect_jacobians_match(*project, {{-0.8, 0.6, 0.2}});
 
@@ -83,7 +86,7 @@ TEST(MeshEnergyTerms, DifferentiatedTableMatchesTheModelAndTheJets) {
     const ImplicitModel& m = *model;
     const detail::ModelDerivatives table(m);
     for (double floor : {0.0, 0.3}) {
-      std::unique_ptr<ceres::CostFunction> jets(detail::ProjectionResidual::Create(m, 0.5, floor));
+      std::unique_ptr<ceres::CostFunction> jets(detail::make_projection_cost(m, 0.5, floor));
       for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.3, 0.1, -0.4), Eigen::Vector3d(-0.8, 0.6, 0.2),
                                       Eigen::Vector3d(1.5, -0.7, 0.9)}) {
         Eigen::Vector3d g;
@@ -214,11 +217,12 @@ TEST(OptimizeMesh, LbfgsAndSparseCholeskyReachTheSameSurface) {
   const auto models = testing::box_models(half);
   const LabeledMesh seamed = insert_seams(proxy, testing::box_labels(proxy, half), models);
   double worst = 0.0;
-  for (MeshSolver solver : {MeshSolver::Lbfgs, MeshSolver::SparseCholesky}) {
+  for (bool trust_region : {false, true}) {
     LabeledMesh m = seamed;
-    MeshEnergyOptions o;
-    o.solver = solver;
-    const OptimizeSummary s = optimize_mesh(m, models, {}, o);
+    const MeshEnergyOptions o;
+    const OptimizeSummary s = trust_region
+        ? optimize_mesh_trust_region(m, models, {}, o, TrustRegionSolver::SparseCholesky)
+        : optimize_mesh(m, models, {}, o);
     EXPECT_TRUE(s.usable) << s.solver << ": " << s.termination;
     EXPECT_LT(s.final.total(), 1e-3 * s.initial.total()) << s.solver;
     for (auto v : m.mesh.vertices()) worst = std::max(worst, testing::box_distance(to_eigen(m.mesh.point(v)), half));
