@@ -7,6 +7,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/extract/mirror.h"
+#include "surfacing/sketch/decorations.h"
 
 namespace sketchsurf {
 
@@ -19,7 +20,7 @@ bool PrepareOptions::valid(std::string* why) const {
     if (why) *why = "prepare.min_points must be at least 2";
     return false;
   }
-  return true;
+  return decorations.valid(why);
 }
 
 bool Params::valid(std::string* why) const {
@@ -52,6 +53,7 @@ const std::map<std::string, Setter>& parameter_table() {
   static const std::map<std::string, Setter> table = {
       {"prepare.resample_spacing", setter([](Params& p) -> auto& { return p.prepare.resample_spacing; })},
       {"prepare.min_points", setter([](Params& p) -> auto& { return p.prepare.min_points; })},
+      {"prepare.ignore_decorations", setter([](Params& p) -> auto& { return p.prepare.ignore_decorations; })},
       {"proxy.points", setter([](Params& p) -> auto& { return p.proxy.points; })},
       {"proxy.lambda", setter([](Params& p) -> auto& { return p.proxy.lambda; })},
       {"proxy.edge", setter([](Params& p) -> auto& { return p.proxy.edge; })},
@@ -161,6 +163,13 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
     throw Error(ErrorKind::Input, "all the sketch's points coincide; nothing to surface");
   if (params_.prepare.resample_spacing > 0.0)
     resample(sketch, params_.prepare.resample_spacing * report.diagonal);
+  if (params_.prepare.ignore_decorations) {
+    report.decorations = find_decorations(sketch, params_.prepare.decorations);
+    for (const Decoration& d : report.decorations) sketch.strokes[d.stroke].ignored = true;
+    if (std::all_of(sketch.strokes.begin(), sketch.strokes.end(), [](const Stroke& s) { return s.ignored; }))
+      throw Error(ErrorKind::Input, "no stroke is left to surface once the strokes that depict no "
+                                    "surface are ignored; keep them with prepare.ignore_decorations = 0");
+  }
   report.strokes = sketch.strokes.size();
   report.points = sketch.point_count();
   report.prepare_s = seconds_since(t);

@@ -26,6 +26,7 @@
 #include "surfacing/proxy/proxy.h"
 #include "surfacing/quality/checks.h"
 #include "surfacing/segment/pearl.h"
+#include "surfacing/sketch/decorations.h"
 #include "surfacing/sketch/sketch.h"
 
 namespace sketchsurf {
@@ -34,6 +35,9 @@ namespace sketchsurf {
 struct PrepareOptions {
   double resample_spacing = 0.005;  ///< stroke resampling step, fraction of the diagonal; 0 = keep
   int min_points = 2;               ///< strokes with fewer points after cleaning are dropped
+  bool ignore_decorations = true;   ///< strokes that depict no surface (a dot apart, a stroke
+                                    ///< hanging by one end) are marked ignored (decorations.h)
+  DecorationOptions decorations;
   bool valid(std::string* why) const;
 };
 
@@ -58,6 +62,7 @@ struct Params {
 struct SurfaceReport {
   CleanReport cleaning;
   std::size_t strokes = 0, points = 0;  ///< after preparation (ignored strokes included)
+  std::vector<Decoration> decorations;  ///< strokes ignored as depicting no surface
   double diagonal = 0.0;                ///< of the prepared sketch's bounding box, sketch units
   bool user_proxy = false;
   ProxyReport proxy;

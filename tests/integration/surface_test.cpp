@@ -200,3 +200,24 @@ TEST(Surface, MirroredCubeIsSymmetricWithoutGapOrDoubleFaces) {
 
 }  // namespace
 }  // namespace sketchsurf
+
+namespace sketchsurf {
+namespace {
+
+TEST(Surface, AnAntennaStrokeIsIgnoredAndMakesNoSpike) {
+  Sketch sketch = testing::sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return Eigen::Vector3d(0.5 + 0.4 * t, 0, 0); }, 0.0, 1.0, 0.01));
+  Params params;
+  params.segment.restarts = 2;
+  const SurfaceResult r = Surfacer(params).run(sketch);
+  ASSERT_EQ(r.report.decorations.size(), 1u);
+  EXPECT_EQ(r.report.decorations[0].id, static_cast<std::int64_t>(sketch.strokes.size() - 1));
+  double farthest = 0.0;
+  for (auto v : r.mesh.vertices()) farthest = std::max(farthest, to_eigen(r.mesh.point(v)).norm());
+  EXPECT_LT(farthest, 0.56);  // the sphere of radius 0.5, no spike towards x = 0.9
+  EXPECT_LT(r.report.checks.beyond, 0.001);
+}
+
+}  // namespace
+}  // namespace sketchsurf

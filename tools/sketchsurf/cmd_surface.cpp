@@ -31,6 +31,7 @@ struct SurfaceCommandOptions {
   std::string boundary_strokes;
   std::optional<std::uint64_t> seed;
   std::optional<unsigned> threads;
+  bool keep_all_strokes = false;
 };
 
 /// "x", "y", "z" (the plane through the origin with that normal) or "a,b,c,d" (a x + b y + c z +
@@ -137,6 +138,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                            {"max", rep.stroke_distance.max},
                            {"points", rep.stroke_distance.points}}},
       {"checks", checks_json(rep.checks)},
+      {"decorations", decorations_json(rep.decorations)},
       {"timings", {{"prepare_s", rep.prepare_s},
                    {"proxy_s", rep.proxy_s},
                    {"association_s", seg.association_s},
@@ -166,6 +168,7 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     throw Error::input(opt.sketch, e.what());
   }
   if (opt.seed) params.segment.seed = *opt.seed;
+  if (opt.keep_all_strokes) params.prepare.ignore_decorations = false;
   if (opt.threads)
     params.segment.threads = params.proxy.threads = params.extract.energy.threads =
         params.extract.seams.threads = *opt.threads;
@@ -218,6 +221,13 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     });
   }
   files.commit();
+  if (!global.quiet && !result.report.decorations.empty()) {
+    std::cerr << opt.sketch << ": note: ignored " << result.report.decorations.size()
+              << " stroke(s) that depict no surface (id";
+    for (const Decoration& d : result.report.decorations)
+      std::cerr << " " << d.id << (d.kind == DecorationKind::SmallGroup ? " (small group apart)" : " (hangs by one end)");
+    std::cerr << "); --keep-all-strokes keeps them\n";
+  }
   if (!global.quiet)
     for (const std::string& warning : result.report.checks.warnings)
       std::cerr << opt.sketch << ": warning: " << warning << "\n";
@@ -249,6 +259,9 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
       ->check(whole_number(0, UINT64_MAX));
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all); never changes the result")
       ->check(whole_number(0, kMaxThreads));
+  cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
+                "Surface every stroke, also those that seem to depict no surface (a dot apart, a "
+                "stroke hanging by one end)");
   cmd->callback([opt, &global] { run_surface(*opt, global); });
 }
 

@@ -36,6 +36,13 @@ nlohmann::json checks_json(const ShapeChecks& c) {
           {"warnings", c.warnings}};
 }
 
+nlohmann::json decorations_json(const std::vector<Decoration>& decorations) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Decoration& d : decorations)
+    out.push_back({{"id", d.id}, {"kind", d.kind == DecorationKind::SmallGroup ? "small group" : "dangling"}});
+  return out;
+}
+
 double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

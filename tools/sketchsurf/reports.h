@@ -5,6 +5,7 @@
 
 #include "surfacing/quality/checks.h"
 #include "surfacing/segment/pearl.h"
+#include "surfacing/sketch/decorations.h"
 
 namespace sketchsurf::cli {
 
@@ -14,6 +15,9 @@ nlohmann::json models_json(const Segmentation& segmentation);
 /// The shape checks: {far_5, far_10, beyond, outside_box, components, genus, boundary_loops,
 /// self_intersections, regions, border_length, border_ratio, warnings}.
 nlohmann::json checks_json(const ShapeChecks& checks);
+
+/// The strokes ignored as decorations: [{id, kind: "small group" | "dangling"}].
+nlohmann::json decorations_json(const std::vector<Decoration>& decorations);
 
 /// Peak resident set size of this process so far, in MiB.
 double peak_rss_mb();

@@ -1,0 +1,44 @@
+#pragma once
+// Strokes that depict no surface: a dot or a small scribble apart from the rest, a single stroke
+// that hangs off the sketch by one end (an antenna, a cable, a stem). Left in, each becomes a blob,
+// a horn or a fin of the surface; so they are found before surfacing and marked ignored.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "surfacing/sketch/sketch.h"
+
+namespace sketchsurf {
+
+/// Options for find_decorations(). Distances are fractions of the sketch's bounding-box diagonal.
+struct DecorationOptions {
+  double touch = 0.02;         ///< two strokes touch where their points come this close
+  double small_group = 0.05;   ///< a group of touching strokes whose extent is below this, and
+                               ///< that is not the largest group, depicts no surface
+  double end_share = 0.25;     ///< "touches by one end only": every touching point lies within
+                               ///< this share of the stroke's length from the same end
+  double min_dangling = 0.08;  ///< a one-end stroke counts only when at least this long
+  double free_end = 0.06;      ///< ... and when its free end is this far from every other stroke
+  bool valid(std::string* why) const;
+};
+
+/// Why a stroke was found to depict no surface.
+enum class DecorationKind { SmallGroup, Dangling };
+
+/// One stroke that find_decorations() would ignore.
+struct Decoration {
+  std::size_t stroke = 0;  ///< index into sketch.strokes
+  std::int64_t id = -1;    ///< that stroke's id
+  DecorationKind kind = DecorationKind::Dangling;
+};
+
+/// The strokes of `sketch` that depict no surface: members of a small group of touching strokes
+/// apart from the largest group (dots, small scribbles), and strokes longer than min_dangling
+/// that touch the others by at most one end while the other end is free_end away from them
+/// (closed strokes excepted). Strokes already ignored, boundary strokes and
+/// strokes of fewer than 2 points are left out of the test (boundary strokes still count as
+/// neighbours). Deterministic; `sketch` should be resampled (the test runs on its points).
+std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationOptions& options = {});
+
+}  // namespace sketchsurf

@@ -1,0 +1,84 @@
+// Strokes that depict no surface: an antenna hanging by one end and a dot apart are found; the
+// strokes of curve networks, with exact or imprecise junctions, and closed outlines are not.
+
+#include <gtest/gtest.h>
+
+#include "surfacing/sketch/decorations.h"
+#include "tests/support/shapes.h"
+
+namespace sketchsurf {
+namespace {
+
+using V3 = Eigen::Vector3d;
+
+Stroke segment(const V3& a, const V3& b) {
+  return testing::sample_curve([&](double t) { return V3(a + t * (b - a)); }, 0.0, 1.0, 0.005);
+}
+
+Sketch prepared(Sketch sketch) {
+  sketch.assign_ids();
+  resample(sketch, 0.005 * sketch.bounding_box().diagonal());
+  return sketch;
+}
+
+TEST(Decorations, CurveNetworksHaveNone) {
+  EXPECT_TRUE(find_decorations(prepared(testing::cube_sketch())).empty());
+  EXPECT_TRUE(find_decorations(prepared(testing::cylinder_sketch())).empty());
+  EXPECT_TRUE(find_decorations(prepared(testing::sphere_sketch())).empty());
+  EXPECT_TRUE(find_decorations(prepared(testing::torus_sketch())).empty());
+}
+
+TEST(Decorations, ImpreciseJunctionsAreNotAntennas) {
+  // Every cube edge stops 3% of the side short of its corners, as hands draw in mid-air.
+  Sketch cube = testing::cube_sketch(1.0, false);
+  for (Stroke& s : cube.strokes) {
+    const V3 a = s.points.front(), b = s.points.back(), d = 0.03 * (b - a).normalized();
+    s = segment(a + d, b - d);
+  }
+  EXPECT_TRUE(find_decorations(prepared(cube)).empty());
+}
+
+TEST(Decorations, AnAntennaHangingByOneEndIsFound) {
+  Sketch sketch = testing::sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(segment(V3(0.5, 0, 0), V3(0.9, 0, 0)));
+  const Sketch s = prepared(sketch);
+  const auto found = find_decorations(s);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].stroke, s.strokes.size() - 1);
+  EXPECT_EQ(found[0].id, s.strokes.back().id);
+  EXPECT_EQ(found[0].kind, DecorationKind::Dangling);
+}
+
+TEST(Decorations, ADotApartIsFoundAndAClosedOutlineOnAFaceIsNot) {
+  Sketch sketch = testing::cube_sketch();
+  sketch.strokes.push_back(segment(V3(1.0, 1.0, 1.0), V3(1.004, 1.0, 1.0)));  // a dot
+  // A circle drawn on the top face, touching no other stroke.
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return V3(0.25 + 0.1 * std::cos(t), 0.5, -0.25 + 0.1 * std::sin(t)); }, 0, 2 * M_PI, 0.005));
+  const Sketch s = prepared(sketch);
+  const auto found = find_decorations(s);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].stroke, s.strokes.size() - 2);
+  EXPECT_EQ(found[0].kind, DecorationKind::SmallGroup);
+}
+
+TEST(Decorations, StrokesTheUserMarkedAreLeftAlone) {
+  Sketch sketch = testing::sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(segment(V3(0.5, 0, 0), V3(0.9, 0, 0)));
+  sketch.strokes.back().boundary = true;
+  EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+  sketch.strokes.back().boundary = false;
+  sketch.strokes.back().ignored = true;
+  EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+}
+
+TEST(Decorations, InvalidOptionsAreNamed) {
+  DecorationOptions options;
+  options.free_end = 0.01;  // below `touch`
+  std::string why;
+  EXPECT_FALSE(options.valid(&why));
+  EXPECT_NE(why.find("free_end"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sketchsurf
