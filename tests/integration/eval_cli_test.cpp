@@ -17,22 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() /
-                       (std::string("sketchsurf_eval_cli_") +
-                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return testing::scratch_dir("sketchsurf_eval_cli_"); }
 
-// The path quoted for the shell (built by appending: GCC 12 warns falsely on "'" + string).
-std::string q(const fs::path& p) {
-  std::string quoted(1, '\'');
-  quoted += p.string();
-  quoted += '\'';
-  return quoted;
-}
+std::string q(const fs::path& p) { return testing::quoted(p); }
 
 TEST(EvalCli, SpheresTwoPercentApart) {
   const fs::path dir = scratch();

@@ -1,6 +1,7 @@
 #pragma once
 // Runs the sketchsurf executable from a CLI test (SKETCHSURF_CLI is set by sketchsurf_add_test).
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -28,6 +29,25 @@ inline CliRun run_cli(const std::string& args, const std::filesystem::path& dir)
   std::stringstream text;
   text << in.rdbuf();
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+/// `path` in single quotes, for the shell (built by appending: GCC 12 warns falsely on "'" + s).
+inline std::string quoted(const std::filesystem::path& path) {
+  std::string out(1, '\'');
+  out += path.string();
+  out += '\'';
+  return out;
+}
+
+/// A fresh, empty folder for the running test, named after `prefix` and the test (the tests of one
+/// binary may run in parallel under CTest).
+inline std::filesystem::path scratch_dir(const std::string& prefix) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      (prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 }  // namespace sketchsurf::testing

@@ -11,13 +11,7 @@ namespace {
 
 // `b` added to `a` as another component.
 TriMesh joined(TriMesh a, const TriMesh& b) {
-  std::vector<TriMesh::VertexHandle> map;
-  for (auto v : b.vertices()) map.push_back(a.add_vertex(b.point(v)));
-  for (auto f : b.faces()) {
-    std::vector<TriMesh::VertexHandle> corners;
-    for (auto v : b.fv_range(f)) corners.push_back(map[v.idx()]);
-    a.add_face(corners);
-  }
+  testing::append_mesh(a, b);
   return a;
 }
 

@@ -83,14 +83,7 @@ TEST(Eval, ASurfaceAgainstItselfIsExact) {
 TEST(Eval, MissingPartIsSeenByCompletenessOnly) {
   // Truth: two spheres; result: one of them. Accuracy is perfect, completeness is not.
   TriMesh truth = testing::icosphere(3, 0.5);
-  const TriMesh other = testing::icosphere(3, 0.5, Eigen::Vector3d(2, 0, 0));
-  std::vector<TriMesh::VertexHandle> map;
-  for (auto v : other.vertices()) map.push_back(truth.add_vertex(other.point(v)));
-  for (auto f : other.faces()) {
-    std::vector<TriMesh::VertexHandle> corners;
-    for (auto v : other.fv_range(f)) corners.push_back(map[v.idx()]);
-    truth.add_face(corners);
-  }
+  testing::append_mesh(truth, testing::icosphere(3, 0.5, Eigen::Vector3d(2, 0, 0)));
   const TriMesh result = testing::icosphere(3, 0.5);
   const Evaluation e = evaluate(result, truth);
   EXPECT_LT(e.accuracy.max, 1e-9);
