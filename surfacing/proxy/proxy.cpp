@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <algorithm>
 #include <numeric>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
 #include "surfacing/proxy/attract.h"
+#include "surfacing/proxy/point_grid.h"
 #include "surfacing/proxy/polygonize.h"
 #include "surfacing/proxy/remesh.h"
 #include "surfacing/proxy/sampling.h"
@@ -78,6 +80,23 @@ void check_encloses(const Eigen::MatrixX3d& x) {
         "can be built automatically; draw strokes around the shape or give a proxy mesh");
 }
 
+// The smoothing weights to try, in order: the given one, or the ladder from lambda_min. Each
+// larger weight lets the zero set pass farther from the samples and bends it less: an
+// interpolating VIPSS surface through sparse, noisy strokes folds between them and runs out as
+// sheets to the box (real sketches: genus 12-50), while too smooth a surface shrinks away from
+// thin parts, hence the smallest weight whose zero set closes within the strokes' extent.
+std::vector<double> lambda_ladder(const ProxyOptions& options) {
+  if (options.lambda >= 0.0) return {options.lambda};
+  std::vector<double> out;
+  for (double l = options.lambda_min;; l *= options.lambda_step) {
+    if (l >= options.lambda_max * (1.0 - 1e-9)) {
+      out.push_back(options.lambda_max);
+      return out;
+    }
+    out.push_back(l);
+  }
+}
+
 void fill_topology(const TriMesh& mesh, ProxyReport& report) {
   report.vertices = mesh.n_vertices();
   report.faces = mesh.n_faces();
@@ -95,6 +114,141 @@ Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge) {
   for (std::size_t i = 0; i < points.size(); ++i)
     targets.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
   return targets;
+}
+
+// The surface the automatic proxy follows: VIPSS's zero set inside the strokes' neighbourhood,
+// g(x) = max(s f(x), d(x) - radius), with s = sign / G making f positive outside (at the box
+// corners) and a distance to first order near the samples (G: the median |grad f| there), and d
+// the distance to the nearest stroke point. Inside VIPSS's surface and within `radius` of a
+// stroke is inside; so where the zero set leaves the strokes (a sheet running to the box, a fin)
+// it is cut at `radius` and closed by the strokes' offset surface; where it stays near the
+// strokes, it is VIPSS's. The offset surface itself stops at `within` (the strokes' box, grown a
+// little): a cap never reaches past the strokes' extent. radius = 0: f alone.
+class ConfinedField {
+ public:
+  ConfinedField(const HermiteRbf& f, double scale, const Eigen::MatrixX3d& strokes, double radius,
+                const BoundingBox& within, double band)
+      : f_(f), scale_(scale), strokes_(strokes), grid_(strokes), radius_(radius), within_(within),
+        band_(band) {}
+
+  // g at p (and, with `to_surface`, the Newton step that moves p onto g = 0 to first order).
+  double value(const Eigen::Vector3d& p, Eigen::Vector3d* to_surface = nullptr) const {
+    if (to_surface) to_surface->setZero();
+    double cap = -std::numeric_limits<double>::infinity();
+    Eigen::Vector3d away = Eigen::Vector3d::Zero();
+    if (radius_ > 0.0) {
+      const auto [i, d2] = grid_.nearest(p, radius_ + band_);
+      if (i < 0) return band_;  // farther than radius + band from every stroke: well outside
+      const double d = std::sqrt(d2);
+      cap = d - radius_;
+      if (d > 0.0) away = (p - strokes_.row(i).transpose()) / d;
+      for (int a = 0; a < 3; ++a)  // the box's slabs: signed distance outside each face
+        for (const double side : {-1.0, 1.0}) {
+          const double wall = side * (p[a] - (side > 0 ? within_.max[a] : within_.min[a]));
+          if (wall > cap) {
+            cap = wall;
+            away = side * Eigen::Vector3d::Unit(a);
+          }
+        }
+      if (cap > band_ && !to_surface) return cap;  // outside whatever f says
+    }
+    if (!to_surface) return std::max(cap, scale_ * f_.value(p));
+    Eigen::Vector3d g;
+    const double value = f_.value_gradient(p, &g);
+    const double own = scale_ * value;
+    if (cap > own) {
+      *to_surface = -cap * away;
+      return cap;
+    }
+    const double g2 = g.squaredNorm();
+    *to_surface = g2 > 0.0 ? Eigen::Vector3d(-value / g2 * g) : Eigen::Vector3d::Zero();
+    return own;
+  }
+
+ private:
+  const HermiteRbf& f_;
+  double scale_;
+  const Eigen::MatrixX3d& strokes_;
+  PointGrid grid_;
+  double radius_;
+  BoundingBox within_;
+  double band_;
+};
+
+// The factor that turns f into a distance to first order near the samples, positive outside:
+// the sign f has on most of the faces of `box` (a grid on each; a sheet running out crosses a
+// few of these points, or a few corners, so corners alone can outvote the truth) over the median
+// gradient norm at the samples.
+double distance_scale(const HermiteRbf& f, const Eigen::MatrixX3d& samples, const BoundingBox& box) {
+  constexpr int kSide = 9;
+  int positive = 0, total = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double side : {box.min[axis], box.max[axis]})
+      for (int i = 0; i < kSide; ++i)
+        for (int j = 0; j < kSide; ++j) {
+          const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+          Eigen::Vector3d p;
+          p[axis] = side;
+          p[a1] = box.min[a1] + (box.max[a1] - box.min[a1]) * i / (kSide - 1);
+          p[a2] = box.min[a2] + (box.max[a2] - box.min[a2]) * j / (kSide - 1);
+          positive += f.value(p) >= 0.0;
+          ++total;
+        }
+  std::vector<double> norms(static_cast<std::size_t>(samples.rows()));
+  for (Eigen::Index i = 0; i < samples.rows(); ++i) {
+    Eigen::Vector3d g;
+    f.value_gradient(samples.row(i).transpose(), &g);
+    norms[static_cast<std::size_t>(i)] = g.norm();
+  }
+  const auto mid = norms.begin() + static_cast<std::ptrdiff_t>(norms.size() / 2);
+  std::nth_element(norms.begin(), mid, norms.end());
+  return (2 * positive >= total ? 1.0 : -1.0) / std::max(*mid, 1e-300);
+}
+
+// Removes the connected components whose area is below `min_fraction` of the whole: specks of
+// VIPSS's inside cut off by the confinement (a bubble between two strokes), not parts of the object.
+void drop_specks(TriMesh& mesh, double min_fraction) {
+  const Eigen::MatrixX3d V = vertex_matrix(mesh);
+  const Eigen::MatrixX3i F = face_matrix(mesh);
+  std::vector<int> parent(static_cast<std::size_t>(V.rows()));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 1; k < 3; ++k) {
+      const int a = find(F(f, 0)), b = find(F(f, k));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<double> area(parent.size(), 0.0);
+  double total = 0.0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const double fa = 0.5 * (b - a).cross(c - a).norm();
+    area[find(F(f, 0))] += fa;
+    total += fa;
+  }
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    if (area[find(F(f, 0))] >= min_fraction * total) kept.push_back(f);
+  if (kept.size() == static_cast<std::size_t>(F.rows())) return;
+  Eigen::MatrixX3i G(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) G.row(static_cast<Eigen::Index>(i)) = F.row(kept[i]);
+  // Unused vertices dropped, the others renumbered in order.
+  std::vector<int> index(parent.size(), -1);
+  int used = 0;
+  for (Eigen::Index f = 0; f < G.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (index[G(f, k)] < 0) index[G(f, k)] = 0;
+  for (auto& i : index)
+    if (i == 0) i = used++;
+  Eigen::MatrixX3d W(used, 3);
+  for (std::size_t v = 0; v < index.size(); ++v)
+    if (index[v] >= 0) W.row(index[v]) = V.row(static_cast<Eigen::Index>(v));
+  for (Eigen::Index f = 0; f < G.rows(); ++f)
+    for (int k = 0; k < 3; ++k) G(f, k) = index[G(f, k)];
+  mesh = mesh_from_matrices(W, G);
 }
 
 // Least-Squares Mesh attraction of `mesh` (unit frame, remeshed at 2^attract_levels times the
@@ -146,13 +300,26 @@ bool ProxyOptions::valid(std::string* why) const {
   };
   if (points < 10) return fail("proxy points must be at least 10");
   if (points > 20000) return fail("proxy points above 20000 need too much memory (n^2)");
-  if (!(lambda >= 0.0) || !std::isfinite(lambda)) return fail("proxy lambda must be >= 0");
+  if (!std::isfinite(lambda)) return fail("proxy lambda must be finite (< 0: chosen per sketch)");
+  if (!(lambda_min > 0.0 && lambda_max >= lambda_min && std::isfinite(lambda_max)))
+    return fail("proxy lambda_min and lambda_max must satisfy 0 < lambda_min <= lambda_max");
+  if (!(lambda_step > 1.0) || !std::isfinite(lambda_step)) return fail("proxy lambda_step must be > 1");
+  if (!(confine_margin > 0.0 && confine_margin < 1.0))
+    return fail("proxy confine_margin must be in (0, 1)");
+  if (!(confine_radius >= 0.0 && confine_radius < 1.0))
+    return fail("proxy confine_radius must be in [0, 1)");
+  if (!(confine_box >= 0.0 && confine_box < 1.0)) return fail("proxy confine_box must be in [0, 1)");
+  if (!(vipss_tolerance > 0.0 && vipss_tolerance < 1.0))
+    return fail("proxy vipss_tolerance must be in (0, 1)");
   if (!(edge > 1e-4 && edge < 0.5)) return fail("proxy edge must be in (1e-4, 0.5) of the diagonal");
   if (!(cell > 1e-3 && cell < 0.5)) return fail("proxy cell must be in (1e-3, 0.5) of the diagonal");
   if (!(padding >= 0.0 && padding < 1.0)) return fail("proxy padding must be in [0, 1)");
   if (!(sample_spacing > 0.0 && sample_spacing < 0.1))
     return fail("proxy sample_spacing must be in (0, 0.1)");
-  if (remesh_iterations < 0) return fail("proxy remesh_iterations must be >= 0");
+  if (remesh_iterations < 0 || vipss_remesh_iterations < 0)
+    return fail("proxy remesh_iterations and vipss_remesh_iterations must be >= 0");
+  if (!(min_component >= 0.0 && min_component < 1.0))
+    return fail("proxy min_component must be in [0, 1)");
   if (projection_steps < 0) return fail("proxy projection_steps must be >= 0");
   if (!(attract_weight > 0.0)) return fail("proxy attract_weight must be > 0");
   if (attract_rounds < 1) return fail("proxy attract_rounds must be >= 1");
@@ -225,23 +392,43 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
 
   t0 = Clock::now();
   VipssOptions vipss_options;
-  vipss_options.lambda = options.lambda;
-  vipss_options.box_padding = options.padding;
+  vipss_options.box_padding = options.confine_margin;
+  vipss_options.function_tolerance = options.vipss_tolerance;
   vipss_options.threads = options.threads;
-  const VipssResult vipss = solve_vipss(samples, vipss_options, progress);
+  VipssResult vipss;
+  for (const double lambda : lambda_ladder(options)) {
+    vipss_options.lambda = lambda;
+    vipss = solve_vipss(samples, vipss_options, progress);
+    r.lambda = lambda;
+    ++r.vipss_solves;
+    if (vipss.summary.closed) break;
+  }
   r.vipss = vipss.summary;
   r.vipss_seconds = seconds_since(t0);
 
   t0 = Clock::now();
-  const HermiteRbf& f = vipss.function;
   const unsigned threads = options.threads;
-  const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
-    f.values(p, values, threads);
-  };
   BoundingBox box;
   for (Eigen::Index i = 0; i < samples.rows(); ++i) box.extend(samples.row(i).transpose());
   box.min.array() -= options.padding;
   box.max.array() += options.padding;
+  const Eigen::MatrixX3d stroke_points = stroke_targets(unit, options.cell);
+  r.confine_radius = options.confine_radius;
+  BoundingBox within;
+  for (Eigen::Index i = 0; i < stroke_points.rows(); ++i) within.extend(stroke_points.row(i).transpose());
+  within.min.array() -= options.confine_box;
+  within.max.array() += options.confine_box;
+  const ConfinedField g(vipss.function, distance_scale(vipss.function, samples, box), stroke_points,
+                        r.confine_radius, within, 2.0 * options.cell);
+  constexpr std::size_t kChunk = 64;
+  const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
+    values.resize(p.rows());
+    const auto rows = static_cast<std::size_t>(p.rows());
+    parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t c) {
+      for (std::size_t i = c * kChunk; i < std::min(rows, (c + 1) * kChunk); ++i)
+        values[static_cast<Eigen::Index>(i)] = g.value(p.row(static_cast<Eigen::Index>(i)).transpose());
+    });
+  };
   PolygonizeOptions poly;
   poly.cell_size = options.cell;
   PolygonizeSummary poly_summary;
@@ -249,24 +436,22 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.evaluations = poly_summary.evaluations;
   if (mesh.n_faces() == 0)
     throw Error::processing("VIPSS found no closed surface through the strokes");
+  drop_specks(mesh, options.min_component);
   r.polygonize_seconds = seconds_since(t0);
 
   t0 = Clock::now();
   const int steps = options.projection_steps;
   const double max_move = 2.0 * std::max(options.cell, options.edge);
   const SurfaceProjector project = [&](Eigen::MatrixX3d& p) {
-    constexpr std::size_t kChunk = 64;
     const auto rows = static_cast<std::size_t>(p.rows());
     parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t c) {
       for (std::size_t i = c * kChunk; i < std::min(rows, (c + 1) * kChunk); ++i) {
         const Eigen::Vector3d from = p.row(static_cast<Eigen::Index>(i)).transpose();
         Eigen::Vector3d x = from;
-        for (int s = 0; s < steps; ++s) {  // Newton on f along its gradient
-          Eigen::Vector3d g;
-          const double value = f.value_gradient(x, &g);
-          const double g2 = g.squaredNorm();
-          if (!(g2 > 0.0)) break;
-          x -= value / g2 * g;
+        for (int s = 0; s < steps; ++s) {  // Newton on the term of g that is active
+          Eigen::Vector3d step;
+          g.value(x, &step);
+          x += step;
         }
         // Vertices start within a grid cell of the surface; a longer jump (a nearly vanishing
         // gradient) would tear the mesh, so such a vertex stays where smoothing put it.
@@ -278,7 +463,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   RemeshOptions remesh_options;
   remesh_options.target_edge =
       options.attract_vipss ? std::ldexp(options.edge, options.attract_levels) : options.edge;
-  remesh_options.iterations = options.remesh_iterations;
+  remesh_options.iterations = options.vipss_remesh_iterations;
   remesh(mesh, remesh_options, project, progress);
   r.remesh_seconds = seconds_since(t0);
   if (options.attract_vipss)

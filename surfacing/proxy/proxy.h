@@ -15,15 +15,46 @@ namespace sketchsurf {
 /// Every tunable number of the proxy stage. Lengths are fractions of the bounding-box diagonal of
 /// the strokes that are not ignored (the sketch is normalised to unit diagonal internally).
 struct ProxyOptions {
-  std::size_t points = 1000;   ///< VIPSS sample count (Huang et al. 2019); see proxy_bench
-  double lambda = 0.0;         ///< VIPSS smoothing weight on the unit-diagonal sketch; 0 = interpolate
+  std::size_t points = 400;    ///< VIPSS sample count (Huang et al. 2019): its cost grows as n^3
+                               ///< (factorisation) and n^2 per L-BFGS step; with smoothing, 400
+                               ///< give the shape (1000: 3-10x the time on real sketches)
+  double lambda = -1.0;        ///< VIPSS smoothing weight (VIPSS Eq. 9) on the unit-diagonal
+                               ///< sketch; 0 = interpolate; < 0 = chosen per sketch: the first of
+                               ///< lambda_min * lambda_step^k (up to lambda_max) whose zero set is
+                               ///< confined (see confine_margin)
+  double lambda_min = 1e-4;    ///< first smoothing weight tried when lambda < 0
+  double lambda_max = 1e-3;    ///< last smoothing weight tried when lambda < 0 (kept if none is
+                               ///< confined: the smoothest surface runs least far)
+  double lambda_step = 10.0;   ///< factor between the smoothing weights tried
+  double confine_margin = 0.1;   ///< a zero set is confined when f has one sign all over the faces
+                                 ///< of the samples' box grown by this (fraction of diagonal): no
+                                 ///< sheet runs out past the strokes' extent to the box
+  double confine_radius = 0.3;   ///< no surface farther than this from every stroke (fraction of
+                                 ///< diagonal; 0 = off): where VIPSS's zero set runs on past the
+                                 ///< strokes (a sheet, a fin) it is cut at this distance and closed
+                                 ///< by the strokes' offset surface. Smaller keeps thin parts apart
+                                 ///< (ground-truth chair: legs apart at 0.15) but pits faces framed
+                                 ///< by strokes far apart (bundled cube: genus 5 at 0.15, 0 at 0.3;
+                                 ///< ground-truth torus: 21 at 0.04, 1 at 0.08)
+  double confine_box = 0.02;    ///< with confine_radius > 0, no surface farther than this outside
+                                ///< the strokes' bounding box either (fraction of diagonal): the
+                                ///< offset surface that closes a cut would reach confine_radius
+                                ///< past the outermost strokes
+  double min_component = 0.01;  ///< parts of the polygonised surface with less than this fraction
+                                ///< of its area are dropped (specks the confinement cuts off)
+  double vipss_tolerance = 1e-7;  ///< L-BFGS relative energy change at which the normals are
+                                  ///< final (VIPSS Eq. 10)
   double edge = 0.007;         ///< target edge length, fraction of diagonal (paper §5: the authors'
                                ///< proxy_resolution)
   double cell = 0.01;          ///< polygonisation grid spacing, fraction of diagonal
   double padding = 0.1;        ///< margin of the polygonisation box around the strokes, fraction of
                                ///< diagonal
   double sample_spacing = 0.002;  ///< stroke resampling before farthest-point sampling, fraction
-  int remesh_iterations = 5;   ///< isotropic remeshing rounds (Botsch & Kobbelt 2004)
+  int remesh_iterations = 5;   ///< isotropic remeshing rounds of a user proxy (Botsch & Kobbelt
+                               ///< 2004)
+  int vipss_remesh_iterations = 3;  ///< the same for the automatic proxy: the polygonised surface is
+                                    ///< already near the target edge (5 rounds: the same shape,
+                                    ///< 1.6x the remeshing time)
   int projection_steps = 1;    ///< Newton steps per projection onto the VIPSS surface (each
                                ///< remeshing round projects again)
   double attract_weight = 2.0; ///< Least-Squares Mesh positional weight (Sorkine & Cohen-Or 2004)
@@ -63,7 +94,10 @@ struct ProxyReport {
   std::size_t samples = 0;        ///< VIPSS input points (0 for a user proxy)
   std::size_t vertices = 0, faces = 0;
   MeshTopology topology;
-  VipssSummary vipss;             ///< automatic proxy only
+  VipssSummary vipss;             ///< automatic proxy only: the kept solve
+  double lambda = 0.0;            ///< automatic proxy: the smoothing weight used
+  double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
+  std::size_t vipss_solves = 0;   ///< automatic proxy: smoothing weights tried
   std::size_t evaluations = 0;    ///< implicit-function evaluations by the polygoniser
   std::size_t anchors = 0;        ///< user proxy: vertices pulled to strokes
   double median_distance_before = 0, median_distance_after = 0;  ///< user proxy: strokes to
@@ -72,9 +106,11 @@ struct ProxyReport {
          attract_seconds = 0, total_seconds = 0;
 };
 
-/// The automatic proxy: samples the strokes (not the ignored ones), runs VIPSS, polygonises every
-/// component of its zero set that passes through the samples, remeshes isotropically onto it and
-/// (attract_vipss) attracts it to the strokes as attract_proxy() does.
+/// The automatic proxy: samples the strokes (not the ignored ones), runs VIPSS (with the smallest
+/// smoothing weight of the ladder whose zero set stays within the strokes' extent, unless a lambda
+/// is given), polygonises every component of its zero set that passes through the samples,
+/// remeshes isotropically onto it and (attract_vipss) attracts it to the strokes as
+/// attract_proxy() does.
 /// @return a closed, manifold, outward-oriented mesh in the sketch's units.
 /// @throws Error (Usage) for invalid options; Error (Processing) when the strokes are too few, lie
 ///         in a plane or on a line, or VIPSS finds no surface; Error (Cancelled).

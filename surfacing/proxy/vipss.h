@@ -13,8 +13,8 @@ namespace sketchsurf {
 struct VipssOptions {
   double lambda = 0.0;  ///< smoothing weight (VIPSS Eq. 9); 0 = exact interpolation. Absolute, in
                         ///< the units of the points (make_proxy passes points of unit diagonal)
-  double box_padding = 0.1;  ///< margin of the box whose faces must see one sign of f (a closed
-                             ///< zero set), absolute like lambda; the polygonisation's padding
+  double box_padding = 0.1;  ///< margin around the points of the box whose faces must see one
+                             ///< sign of f (a zero set closed within it), absolute like lambda
   int max_iterations = 2000;           ///< L-BFGS iteration cap
   double function_tolerance = 1e-10;   ///< L-BFGS stops when the relative energy change is below
   double gradient_tolerance = 1e-10;   ///< L-BFGS stops when the gradient max-norm is below

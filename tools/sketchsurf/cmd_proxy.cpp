@@ -49,6 +49,9 @@ nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt)
                   {"lbfgs_iterations", r.vipss.lbfgs_iterations},
                   {"start", r.vipss.start == 0 ? "eigenvector" : "ellipsoid"},
                   {"closed_in_box", r.vipss.closed},
+                  {"lambda", r.lambda},
+                  {"solves", r.vipss_solves},
+                  {"confine_radius", r.confine_radius},
                   {"termination", r.vipss.termination},
                   {"evaluations", r.evaluations}};
   if (r.anchors > 0)
@@ -107,8 +110,8 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--points", opt->proxy.points, "VIPSS sample points")
       ->capture_default_str()
       ->check(whole_number(10, 20000));
-  cmd->add_option("--lambda", opt->proxy.lambda, "VIPSS smoothing, 0 = interpolate the samples")
-      ->capture_default_str()
+  cmd->add_option("--lambda", opt->proxy.lambda,
+                  "VIPSS smoothing, 0 = interpolate the samples (default: chosen per sketch)")
       ->check(non_negative_number());
   cmd->add_option("--edge", opt->proxy.edge, "Target edge length, fraction of the bbox diagonal")
       ->capture_default_str()

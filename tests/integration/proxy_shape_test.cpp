@@ -1,0 +1,134 @@
+// The automatic proxy has the shape the strokes depict, on sketches drawn (synthesize_sketch, net
+// style) on ground-truth shapes: a torus keeps its hole, two nearby spheres stay apart, a chair's
+// legs stay apart, a thin plate is not inflated, a mug is one closed part, and no surface runs
+// past the strokes' extent.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "surfacing/proxy/proxy.h"
+#include "surfacing/quality/synth.h"
+#include "tests/support/truth_suite.h"
+
+namespace sketchsurf {
+namespace {
+
+struct Made {
+  Sketch sketch;
+  TriMesh proxy;
+  ProxyReport report;
+  MeshTopology topology;
+};
+
+Made proxy_of(const std::string& shape) {
+  Made m;
+  m.sketch = synthesize_sketch(testing::truth_shape(shape).mesh);
+  m.proxy = make_proxy(m.sketch, {}, {}, &m.report);
+  m.topology = mesh_topology(m.proxy);
+  return m;
+}
+
+// Generalised winding number of the closed mesh at p (1 inside, 0 outside): the solid angles of
+// its triangles seen from p (Van Oosterom & Strackee 1983) over 4 pi.
+double winding_number(const TriMesh& mesh, const Eigen::Vector3d& p) {
+  double sum = 0.0;
+  for (const auto f : mesh.faces()) {
+    auto h = f.halfedge();
+    const Eigen::Vector3d a = to_eigen(mesh.point(h.from())) - p,
+                          b = to_eigen(mesh.point(h.to())) - p,
+                          c = to_eigen(mesh.point(h.next().to())) - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    sum += 2.0 * std::atan2(a.dot(b.cross(c)),
+                            la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
+  }
+  return sum / (4.0 * std::numbers::pi);
+}
+
+// No area of the proxy beyond the strokes' bounding box grown by `margin` of its diagonal.
+void expect_within_strokes(const Made& m, double margin) {
+  BoundingBox box = m.sketch.bounding_box();
+  const double grow = margin * box.diagonal();
+  box.min.array() -= grow;
+  box.max.array() += grow;
+  std::size_t outside = 0;
+  for (const auto v : m.proxy.vertices()) {
+    const Eigen::Vector3d p = to_eigen(m.proxy.point(v));
+    outside += (p.array() < box.min.array()).any() || (p.array() > box.max.array()).any();
+  }
+  EXPECT_LE(outside, m.proxy.n_vertices() / 100) << "vertices outside the strokes' grown box";
+}
+
+TEST(ProxyShape, MugIsOneClosedPartWithinItsStrokes) {
+  const Made m = proxy_of("mug");
+  EXPECT_TRUE(m.topology.closed());
+  EXPECT_EQ(m.topology.components, 1u);
+  expect_within_strokes(m, 0.05);
+}
+
+// Not reached yet: the mug's proxy has genus 0 here (the handle webbed to the wall, lambda 1e-3)
+// and genus 8 from the same sketch written and read back by the CLI (small tunnels through the
+// double wall at lambda 1e-4). Enable when the proxy keeps the handle.
+TEST(ProxyShape, DISABLED_MugKeepsItsHandle) {
+  const Made m = proxy_of("mug");
+  EXPECT_EQ(m.topology.genus, 1);
+}
+
+TEST(ProxyShape, TorusKeepsItsHole) {
+  const Made m = proxy_of("torus");
+  EXPECT_EQ(m.topology.components, 1u);
+  EXPECT_EQ(m.topology.genus, 1);
+  // The centre of the hole is outside.
+  const Eigen::Vector3d centre = 0.5 * (m.sketch.bounding_box().min + m.sketch.bounding_box().max);
+  EXPECT_LT(winding_number(m.proxy, centre), 0.5);
+  expect_within_strokes(m, 0.05);
+}
+
+TEST(ProxyShape, TwoNearbySpheresStayApart) {
+  const Made m = proxy_of("two_spheres");
+  EXPECT_EQ(m.topology.components, 2u);
+  EXPECT_EQ(m.topology.genus, 0);
+  expect_within_strokes(m, 0.05);
+}
+
+// Not reached with the default confine_radius 0.3: the legs are apart at 0.15 (this test passes)
+// but the bundled cube then keeps tunnels; a radius from the sketch's own stroke spacing is
+// needed. Enable when it is chosen per sketch.
+TEST(ProxyShape, DISABLED_ChairLegsStayApart) {
+  const testing::TruthShape chair = testing::truth_shape("chair");
+  Made m;
+  m.sketch = synthesize_sketch(chair.mesh);
+  m.proxy = make_proxy(m.sketch, {}, {}, &m.report);
+  // Between the legs, below the seat: the truth is empty there (+y up); so must the proxy be.
+  BoundingBox legs;
+  for (const auto v : chair.mesh.vertices()) legs.extend(to_eigen(chair.mesh.point(v)));
+  const double height = legs.max.y() - legs.min.y();
+  for (const double t : {0.1, 0.2}) {
+    const Eigen::Vector3d under(0.5 * (legs.min.x() + legs.max.x()), legs.min.y() + t * height,
+                                0.5 * (legs.min.z() + legs.max.z()));
+    EXPECT_LT(winding_number(chair.mesh, under), 0.5) << "the truth is empty at height " << t;
+    EXPECT_LT(winding_number(m.proxy, under), 0.5) << "legs webbed at height " << t;
+  }
+  expect_within_strokes(m, 0.05);
+}
+
+TEST(ProxyShape, ThinPlateIsNotInflated) {
+  const testing::TruthShape plate = testing::truth_shape("thin_plate");
+  Made m;
+  m.sketch = synthesize_sketch(plate.mesh);
+  m.proxy = make_proxy(m.sketch, {}, {}, &m.report);
+  // The plate's thin axis is its bounding box's shortest; the proxy's extent along it stays small.
+  BoundingBox truth, proxy;
+  for (const auto v : plate.mesh.vertices()) truth.extend(to_eigen(plate.mesh.point(v)));
+  for (const auto v : m.proxy.vertices()) proxy.extend(to_eigen(m.proxy.point(v)));
+  Eigen::Index thin = 0;
+  (truth.max - truth.min).minCoeff(&thin);
+  const double diagonal = truth.diagonal();
+  EXPECT_LT(proxy.max[thin] - proxy.min[thin], 0.15 * diagonal);
+  expect_within_strokes(m, 0.05);
+}
+
+}  // namespace
+}  // namespace sketchsurf
