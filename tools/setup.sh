@@ -24,7 +24,7 @@ done
 packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libceres-dev libsuitesparse-dev libopenmesh-dev libspectra-dev libboost-graph-dev
-  libzip-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libstb-dev libmetis-dev
+  libzip-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libstb-dev libmetis-dev libtinygltf-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools libglfw3-dev libglm-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -1,25 +1,21 @@
 #pragma once
 // The renderer's colours, fixed so that pictures are comparable from run to run and between tools.
 //
-// Region palette (label i -> kRegionPalette[i % 12], ColorBrewer Set3 with its grey replaced):
-//   0 #8dd3c7 teal      1 #ffffb3 cream     2 #bebada lavender   3 #fb8072 salmon
-//   4 #80b1d3 blue      5 #fdb462 orange    6 #b3de69 green      7 #fccde5 pink
-//   8 #e5c494 sand      9 #bc80bd purple   10 #ccebc5 mint      11 #ffed6f yellow
-// Negative labels (unlabelled vertices) are grey #9e9e9e.
+// The region colours are surfacing's (surfacing/palette.h: ColorBrewer Set3, label i -> colour
+// i mod 12), shared with the mesh writers.
 
 #include <array>
 #include <cstdint>
 
+#include "surfacing/palette.h"
+
 namespace sketchsurf::render {
 
-using Rgb8 = std::array<std::uint8_t, 3>;
+using sketchsurf::kRegionPalette;
+using sketchsurf::kUnlabelledColor;
+using sketchsurf::region_color;
+using sketchsurf::Rgb8;
 
-inline constexpr std::array<Rgb8, 12> kRegionPalette{{
-    {0x8d, 0xd3, 0xc7}, {0xff, 0xff, 0xb3}, {0xbe, 0xba, 0xda}, {0xfb, 0x80, 0x72},
-    {0x80, 0xb1, 0xd3}, {0xfd, 0xb4, 0x62}, {0xb3, 0xde, 0x69}, {0xfc, 0xcd, 0xe5},
-    {0xe5, 0xc4, 0x94}, {0xbc, 0x80, 0xbd}, {0xcc, 0xeb, 0xc5}, {0xff, 0xed, 0x6f},
-}};
-inline constexpr Rgb8 kUnlabelledColor{0x9e, 0x9e, 0x9e};
 inline constexpr Rgb8 kSurfaceColor{0xb4, 0xc3, 0xd7};         ///< mesh without labels or colours
 inline constexpr Rgb8 kStrokeColor{0x1f, 0x2a, 0x44};          ///< ordinary strokes
 inline constexpr Rgb8 kBoundaryStrokeColor{0x1d, 0x6f, 0xd8};  ///< strokes marked boundary
@@ -27,10 +23,5 @@ inline constexpr Rgb8 kIgnoredStrokeColor{0xa0, 0xa0, 0xa0};   ///< strokes mark
 inline constexpr Rgb8 kSharpEdgeColor{0x14, 0x14, 0x14};       ///< creases and region boundaries
 inline constexpr Rgb8 kWireColor{0x50, 0x5a, 0x6e};            ///< wireframe
 inline constexpr Rgb8 kBackground{0xff, 0xff, 0xff};           ///< default background
-
-/// The colour of region `label`: kRegionPalette[label % 12], or kUnlabelledColor when negative.
-inline Rgb8 region_color(int label) {
-  return label < 0 ? kUnlabelledColor : kRegionPalette[static_cast<std::size_t>(label) % 12];
-}
 
 }  // namespace sketchsurf::render

@@ -71,7 +71,7 @@ void run_segment(const SegmentCommandOptions& opt, const GlobalOptions& global) 
   RunFiles files;
   files.input(opt.sketch);
   files.input(opt.proxy);
-  files.output("-o", opt.output, {".obj", ".ply"});
+  files.output("-o", opt.output, {".obj", ".ply", ".glb", ".gltf"});
   if (!opt.report.empty()) files.output("--report", opt.report);
   Sketch sketch = read_clean_sketch(opt.sketch, global);
   if (sketch.strokes.empty()) throw Error::input(opt.sketch, "no stroke left to segment");
@@ -106,7 +106,7 @@ void add_segment_command(CLI::App& app, const GlobalOptions& global) {
   auto* cmd = app.add_subcommand("segment", "Segment a proxy mesh into smooth regions fitting the strokes");
   cmd->add_option("SKETCH", opt->sketch, "Sketch (.tilt, .curves, .obj, .json)")->required();
   cmd->add_option("--proxy", opt->proxy, "Proxy surface mesh (.obj, .ply)")->required();
-  cmd->add_option("-o,--output", opt->output, "Labelled proxy (.ply with per-vertex label and colour, or .obj)")
+  cmd->add_option("-o,--output", opt->output, "Labelled proxy (.ply with per-vertex label and colour, .glb/.gltf, or .obj)")
       ->required();
   cmd->add_option("--report", opt->report, "Write energies, models and timings as JSON");
   cmd->add_option("--seed", opt->segment.seed, "Random seed")

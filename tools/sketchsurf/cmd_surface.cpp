@@ -154,8 +154,8 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
   RunFiles files;
   files.input(opt.sketch);
   files.input(opt.proxy);
-  files.output("-o", opt.output, {".obj", ".ply"});
-  if (!opt.regions.empty()) files.output("--regions", opt.regions, {".obj", ".ply"});
+  files.output("-o", opt.output, {".obj", ".ply", ".glb", ".gltf"});
+  if (!opt.regions.empty()) files.output("--regions", opt.regions, {".obj", ".ply", ".glb", ".gltf"});
   if (!opt.report.empty()) files.output("--report", opt.report);
   Warnings warnings;
   Sketch sketch = read_sketch(opt.sketch, &warnings);
@@ -247,7 +247,7 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--proxy", opt->proxy,
                   "Proxy surface mesh (.obj, .ply), attracted to the strokes; default: automatic (VIPSS)");
   cmd->add_option("-o,--output", opt->output,
-                  "Surface (.ply with per-vertex label and sharp flag, or .obj)")
+                  "Surface (.ply with per-vertex label and sharp flag, .glb/.gltf with creases and region colours, or .obj)")
       ->required();
   cmd->add_option("--report", opt->report, "Write energies, models, stroke distance and timings as JSON");
   cmd->add_option("--regions", opt->regions, "Write the segmented proxy (.ply with per-vertex label)");

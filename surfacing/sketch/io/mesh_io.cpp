@@ -8,6 +8,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/atomic_file.h"
+#include "surfacing/sketch/io/gltf_io.h"
 #include "surfacing/sketch/io/text_io.h"
 
 namespace sketchsurf {
@@ -525,11 +526,13 @@ void write_ply_mesh(const TriMesh& mesh, const std::filesystem::path& file, cons
 void write_mesh(const TriMesh& mesh, const std::filesystem::path& file,
                 const MeshAttributes& attributes) {
   const std::string ext = lower_extension(file);
-  if (ext != ".obj" && ext != ".ply")
-    throw Error::usage(file.string() + ": unknown mesh extension '" + ext + "' (writable: .obj, .ply)");
+  if (ext != ".obj" && ext != ".ply" && ext != ".glb" && ext != ".gltf")
+    throw Error::usage(file.string() + ": unknown mesh extension '" + ext +
+                       "' (writable: .obj, .ply, .glb, .gltf)");
   check_attributes(mesh, attributes, file);
   if (ext == ".obj") write_obj_mesh(mesh, file, attributes);
-  else write_ply_mesh(mesh, file, attributes);
+  else if (ext == ".ply") write_ply_mesh(mesh, file, attributes);
+  else io_detail::write_gltf_mesh(mesh, file, attributes, ext == ".glb");
 }
 
 TriMesh read_mesh(const std::filesystem::path& file, MeshAttributes* attributes) {

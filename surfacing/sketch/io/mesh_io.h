@@ -1,5 +1,6 @@
 #pragma once
-// Triangle mesh files: .obj and binary .ply, with optional per-vertex labels and colours.
+// Triangle mesh files: .obj and binary .ply (read and written), .glb and .gltf (written), with
+// optional per-vertex labels and colours.
 
 #include <array>
 #include <cstdint>
@@ -18,9 +19,11 @@ struct MeshAttributes {
   std::vector<std::uint8_t> sharp;               ///< per vertex sharp flag; empty = none
 };
 
-/// Writes .obj or binary little-endian .ply (by extension), atomically. Labels, colours and sharp
-/// flags go into PLY vertex properties `label` (int), `red green blue` (uchar), `sharp` (uchar);
-/// OBJ gets colours as `v x y z r g b`. Throws Error (Usage) for another extension.
+/// Writes .obj, binary little-endian .ply, or glTF 2.0 .glb / .gltf (by extension), atomically.
+/// Labels, colours and sharp flags go into PLY vertex properties `label` (int), `red green blue`
+/// (uchar), `sharp` (uchar); OBJ gets colours as `v x y z r g b`; glTF gets normals split along
+/// creases, COLOR_0 (the colours, else the region palette of the labels) and `_LABEL`
+/// (gltf_io.h). Throws Error (Usage) for another extension.
 void write_mesh(const TriMesh& mesh, const std::filesystem::path& file,
                 const MeshAttributes& attributes = {});
 
