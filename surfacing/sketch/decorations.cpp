@@ -13,9 +13,9 @@ using V3 = Eigen::Vector3d;
 
 // Points of every stroke in a uniform grid of cell `cell`, for "is a point of another stroke
 // within r <= cell" queries.
-class PointGrid {
+class StrokePointGrid {
  public:
-  PointGrid(const Sketch& sketch, double cell) : cell_(cell) {
+  StrokePointGrid(const Sketch& sketch, double cell) : cell_(cell) {
     for (std::size_t s = 0; s < sketch.strokes.size(); ++s)
       for (const V3& p : sketch.strokes[s].points) cells_[key(p)].push_back({p, s});
   }
@@ -77,7 +77,7 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
   const std::size_t n = sketch.strokes.size();
   if (!(diagonal > 0.0) || n < 2) return out;
   const double r = options.touch * diagonal;
-  const PointGrid grid(sketch, r);
+  const StrokePointGrid grid(sketch, r);
 
   // Which strokes touch which, and where along each stroke (arc length of touching points).
   std::vector<std::size_t> parent(n);
