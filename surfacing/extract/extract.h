@@ -81,7 +81,7 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
                          const std::vector<ImplicitModel>& models, const Sketch& sketch,
                          const ExtractOptions& options, const Progress& progress = {});
 
-/// The same, returning the mesh only (the form agreed in notes/segment_api.md).
+/// The same, returning the mesh only.
 TriMesh extract_surface(const TriMesh& proxy, const std::vector<int>& labels,
                         const std::vector<ImplicitModel>& models, const Sketch& sketch,
                         const ExtractOptions& options, const Progress& progress,
