@@ -8,6 +8,7 @@
 #include "surfacing/error.h"
 #include "surfacing/extract/mirror.h"
 #include "surfacing/sketch/decorations.h"
+#include "surfacing/sketch/symmetry.h"
 
 namespace sketchsurf {
 
@@ -20,7 +21,7 @@ bool PrepareOptions::valid(std::string* why) const {
     if (why) *why = "prepare.min_points must be at least 2";
     return false;
   }
-  return decorations.valid(why);
+  return decorations.valid(why) && mirror_detection.valid(why);
 }
 
 bool Params::valid(std::string* why) const {
@@ -179,6 +180,7 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
       throw Error(ErrorKind::Input, "no stroke is left to surface once the strokes that depict no "
                                     "surface are ignored; keep them with prepare.ignore_decorations = 0");
   }
+  if (!sketch.mirror) report.symmetry = detect_mirror(sketch, params_.prepare.mirror_detection);
   report.strokes = sketch.strokes.size();
   report.points = sketch.point_count();
   report.prepare_s = seconds_since(t);

@@ -28,6 +28,7 @@
 #include "surfacing/segment/pearl.h"
 #include "surfacing/sketch/decorations.h"
 #include "surfacing/sketch/sketch.h"
+#include "surfacing/sketch/symmetry.h"
 
 namespace sketchsurf {
 
@@ -38,6 +39,7 @@ struct PrepareOptions {
   bool ignore_decorations = true;   ///< strokes that depict no surface (a dot apart, a stroke
                                     ///< hanging by one end) are marked ignored (decorations.h)
   DecorationOptions decorations;
+  MirrorDetectOptions mirror_detection;  ///< finding a mirror plane the sketch was not given
   bool valid(std::string* why) const;
 };
 
@@ -63,6 +65,8 @@ struct SurfaceReport {
   CleanReport cleaning;
   std::size_t strokes = 0, points = 0;  ///< after preparation (ignored strokes included)
   std::vector<Decoration> decorations;  ///< strokes ignored as depicting no surface
+  std::optional<DetectedMirror> symmetry;  ///< a mirror plane the strokes have, when the sketch
+                                           ///< was given none (reported, not applied)
   double diagonal = 0.0;                ///< of the prepared sketch's bounding box, sketch units
   bool user_proxy = false;
   ProxyReport proxy;

@@ -217,6 +217,10 @@ TEST(Surface, AnAntennaStrokeIsIgnoredAndMakesNoSpike) {
   for (auto v : r.mesh.vertices()) farthest = std::max(farthest, to_eigen(r.mesh.point(v)).norm());
   EXPECT_LT(farthest, 0.56);  // the sphere of radius 0.5, no spike towards x = 0.9
   EXPECT_LT(r.report.checks.beyond, 0.001);
+  // The sphere and its antenna along +x are mirror-symmetric about y = 0 and z = 0: reported.
+  ASSERT_TRUE(r.report.symmetry.has_value());
+  EXPECT_LT(std::abs(r.report.symmetry->plane.normal.x()), 1e-3);
+  EXPECT_LT(std::abs(r.report.symmetry->plane.offset), 1e-3);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // the piecewise-smooth surface of a sketch (the whole method, paper §4-5).
 
 
+#include <cstdio>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -139,6 +140,11 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                            {"points", rep.stroke_distance.points}}},
       {"checks", checks_json(rep.checks)},
       {"decorations", decorations_json(rep.decorations)},
+      {"symmetry", rep.symmetry ? nlohmann::json{{"normal", {rep.symmetry->plane.normal.x(), rep.symmetry->plane.normal.y(),
+                                                             rep.symmetry->plane.normal.z()}},
+                                                 {"offset", rep.symmetry->plane.offset},
+                                                 {"distance", rep.symmetry->distance}}
+                                : nlohmann::json()},
       {"timings", {{"prepare_s", rep.prepare_s},
                    {"proxy_s", rep.proxy_s},
                    {"association_s", seg.association_s},
@@ -227,6 +233,20 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     for (const Decoration& d : result.report.decorations)
       std::cerr << " " << d.id << (d.kind == DecorationKind::SmallGroup ? " (small group apart)" : " (hangs by one end)");
     std::cerr << "); --keep-all-strokes keeps them\n";
+  }
+  if (!global.quiet && result.report.symmetry) {
+    // Four digits, round-off noise shown as 0: the plane as a user would type it.
+    const auto num = [&](double v, double noise) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.4g", std::abs(v) < noise ? 0.0 : v);
+      return std::string(text);
+    };
+    const Plane& m = result.report.symmetry->plane;
+    const double tiny = 1e-6 * result.report.diagonal;
+    const std::string plane = num(m.normal.x(), 1e-4) + "," + num(m.normal.y(), 1e-4) + "," +
+                              num(m.normal.z(), 1e-4) + "," + num(m.offset, tiny);
+    std::cerr << opt.sketch << ": note: the strokes are mirror-symmetric (plane a,b,c,d = " << plane
+              << "); --mirror " << plane << " surfaces one half and mirrors it\n";
   }
   if (!global.quiet)
     for (const std::string& warning : result.report.checks.warnings)
