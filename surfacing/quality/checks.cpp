@@ -10,43 +10,13 @@
 #include "surfacing/parallel.h"
 #include "surfacing/proxy/proxy.h"
 #include "surfacing/quality/sampling.h"
+#include "surfacing/sketch/stroke_segments.h"
 
 namespace sketchsurf {
 
 namespace {
 
 using V3 = Eigen::Vector3d;
-
-// The non-ignored strokes (and their mirror images when the sketch has a mirror plane) as
-// segments, i.e. degenerate triangles (a, b, b) for a closest-point tree, and their box.
-struct StrokeSegments {
-  Eigen::MatrixX3d V;
-  Eigen::MatrixX3i F;
-  BoundingBox box;
-};
-
-StrokeSegments stroke_segments(const Sketch& sketch) {
-  std::vector<V3> points;
-  std::vector<Eigen::Vector3i> segments;
-  StrokeSegments out;
-  for (int copy = 0; copy < (sketch.mirror ? 2 : 1); ++copy)
-    for (const Stroke& s : sketch.strokes) {
-      if (s.ignored || s.points.empty()) continue;
-      const int first = static_cast<int>(points.size());
-      for (const V3& p : s.points) {
-        points.push_back(copy == 1 ? sketch.mirror->reflect(p) : p);
-        out.box.extend(points.back());
-      }
-      const int n = static_cast<int>(s.points.size());
-      if (n == 1) segments.emplace_back(first, first, first);
-      for (int i = 0; i + 1 < n; ++i) segments.emplace_back(first + i, first + i + 1, first + i + 1);
-    }
-  out.V.resize(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i) out.V.row(static_cast<Eigen::Index>(i)) = points[i];
-  out.F.resize(static_cast<Eigen::Index>(segments.size()), 3);
-  for (std::size_t i = 0; i < segments.size(); ++i) out.F.row(static_cast<Eigen::Index>(i)) = segments[i];
-  return out;
-}
 
 // Whether segment pq crosses triangle abc (Moller-Trumbore; a segment in the triangle's plane
 // does not count).
@@ -199,11 +169,11 @@ ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, con
   out.boundary_loops = topology.boundary_loops;
   out.self_intersections = count_self_intersections(mesh);
 
-  const StrokeSegments strokes = stroke_segments(sketch);
+  const StrokeSegments strokes = stroke_segments(sketch, true);
   const double diagonal = strokes.box.diagonal();
   const SurfaceSamples samples = sample_surface(mesh, options.samples, options.seed);
-  if (strokes.F.rows() > 0 && diagonal > 0.0 && samples.points.rows() > 0) {
-    const ClosestFaceTree tree(strokes.V, strokes.F);
+  if (strokes.segments.rows() > 0 && diagonal > 0.0 && samples.points.rows() > 0) {
+    const ClosestFaceTree tree(strokes.points, strokes.segments);
     const std::size_t n = static_cast<std::size_t>(samples.points.rows());
     std::vector<double> distance(n);
     parallel_for(0, n, options.threads, [&](std::size_t i) {
@@ -219,7 +189,7 @@ ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, con
       if (!(distance[i] > 0.05)) return;
       const auto f = mesh.face_handle(samples.faces[i]);
       beyond[i] = !surrounded(samples.points.row(static_cast<Eigen::Index>(i)),
-                              to_eigen(mesh.calc_face_normal(f)), strokes.V, options.reach * diagonal);
+                              to_eigen(mesh.calc_face_normal(f)), strokes.points, options.reach * diagonal);
     });
     std::size_t far_5 = 0, far_10 = 0, outside = 0, beyond_count = 0;
     for (std::size_t i = 0; i < n; ++i) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "surfacing/closest_face.h"
+#include "surfacing/sketch/stroke_segments.h"
 
 namespace sketchsurf {
 
@@ -67,27 +68,14 @@ bool MirrorDetectOptions::valid(std::string* why) const {
 }
 
 std::optional<DetectedMirror> detect_mirror(const Sketch& sketch, const MirrorDetectOptions& options) {
-  std::vector<V3> points;
-  std::vector<Eigen::Vector3i> segments;
-  for (const Stroke& s : sketch.strokes) {
-    if (s.ignored || s.points.empty()) continue;
-    const int first = static_cast<int>(points.size());
-    points.insert(points.end(), s.points.begin(), s.points.end());
-    for (int i = 0; i + 1 < static_cast<int>(s.points.size()); ++i)
-      segments.emplace_back(first + i, first + i + 1, first + i + 1);
-    if (s.points.size() == 1) segments.emplace_back(first, first, first);
-  }
-  if (points.size() < 4) return std::nullopt;
-  BoundingBox box;
-  for (const V3& p : points) box.extend(p);
-  const double diagonal = box.diagonal();
+  const StrokeSegments strokes = stroke_segments(sketch, false);
+  const Eigen::MatrixX3d& V = strokes.points;
+  if (V.rows() < 4) return std::nullopt;
+  const double diagonal = strokes.box.diagonal();
   if (!(diagonal > 0.0)) return std::nullopt;
-
-  Eigen::MatrixX3d V(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i) V.row(static_cast<Eigen::Index>(i)) = points[i];
-  Eigen::MatrixX3i F(static_cast<Eigen::Index>(segments.size()), 3);
-  for (std::size_t i = 0; i < segments.size(); ++i) F.row(static_cast<Eigen::Index>(i)) = segments[i];
-  const ClosestFaceTree tree(V, F);
+  std::vector<V3> points(static_cast<std::size_t>(V.rows()));
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = V.row(static_cast<Eigen::Index>(i));
+  const ClosestFaceTree tree(V, strokes.segments);
 
   const V3 centroid = V.colwise().mean();
   const Eigen::Matrix3d covariance = (V.rowwise() - centroid.transpose()).transpose() *
