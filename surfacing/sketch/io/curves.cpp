@@ -4,6 +4,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/atomic_file.h"
+#include "surfacing/sketch/io/input_limits.h"
 #include "surfacing/sketch/io/text_io.h"
 
 namespace sketchsurf {
@@ -32,6 +33,7 @@ Sketch read_curves(const std::filesystem::path& file, Warnings* warnings) {
   Sketch sketch;
   sketch.provenance = "CASSIE .curves: " + file.filename().string();
   std::size_t empty_strokes = 0;
+  PointBudget budget(file);
   std::string_view line;
   while (lines.next(line)) {
     io_detail::split_tokens(line, tokens);
@@ -52,6 +54,7 @@ Sketch read_curves(const std::filesystem::path& file, Warnings* warnings) {
                                  "stroke " + std::to_string(sketch.strokes.size()) + " declares " +
                                      std::to_string(*n) + " points but only " +
                                      std::to_string(lines.bytes_left()) + " bytes remain");
+    budget.take(static_cast<std::uint64_t>(*n));
     Stroke stroke;
     stroke.points.reserve(static_cast<std::size_t>(*n));
     while (stroke.points.size() < static_cast<std::size_t>(*n)) {

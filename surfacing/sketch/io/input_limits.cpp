@@ -28,7 +28,21 @@ InputLimits InputLimits::from_environment() {
   InputLimits limits;
   limits.file_bytes = from_env("SKETCHSURF_MAX_INPUT_MB", 1ull << 20, limits.file_bytes);
   limits.line_bytes = from_env("SKETCHSURF_MAX_LINE_KB", 1ull << 10, limits.line_bytes);
+  limits.points = from_env("SKETCHSURF_MAX_POINTS", 1, limits.points);
   return limits;
+}
+
+PointBudget::PointBudget(const std::filesystem::path& file)
+    : file_(file), limit_(InputLimits::from_environment().points) {}
+
+void PointBudget::take(std::uint64_t count) {
+  if (count <= limit_ - taken_) {
+    taken_ += count;
+    return;
+  }
+  throw Error::input(file_, "the sketch holds more than " + std::to_string(limit_) +
+                                " points, the limit; if the file is right, raise it with "
+                                "SKETCHSURF_MAX_POINTS=<count>");
 }
 
 std::uint64_t check_input_file(const std::filesystem::path& file, const InputLimits& limits) {

@@ -115,7 +115,7 @@ class SketchSax {
   /// `offset` tells where the parser is, for error messages.
   SketchSax(const std::filesystem::path& name, Warnings* warnings,
             std::function<std::uint64_t()> offset)
-      : name_(name), warnings_(warnings), offset_(std::move(offset)) {
+      : name_(name), warnings_(warnings), offset_(std::move(offset)), budget_(name) {
     stack_.emplace_back(Where::Document, false);
   }
 
@@ -189,6 +189,14 @@ class SketchSax {
 
   void push(Where where, bool array) { stack_.emplace_back(where, array); }
 
+  // A per-point attribute array holding `size` entries gets one more: it may not outgrow the
+  // limit of points (its length is checked against the stroke's points only at the stroke's end).
+  void check_attribute_count(std::size_t size) const {
+    if (size >= budget_.limit())
+      fail(path(), "more entries than the limit of " + std::to_string(budget_.limit()) +
+                       " points; if the file is right, raise it with SKETCHSURF_MAX_POINTS=<count>");
+  }
+
   // Claims key bit `bit` of the current object; a second occurrence is an error.
   void claim(std::uint32_t bit) {
     Frame& f = stack_.back();
@@ -251,14 +259,19 @@ class SketchSax {
         break;
       case Where::Orientations:
         if (v.kind != Value::Kind::Array) expected("a quaternion [x, y, z, w]", v);
+        check_attribute_count(stroke_.orientations.size());
         push(Where::Orientation, true);
         break;
       case Where::Orientation:
         if (f.index >= 4) fail(path(), "a quaternion has 4 components [x, y, z, w]");
         tuple_[f.index] = finite_number(v);
         break;
-      case Where::Pressures: stroke_.pressures.push_back(finite_float(v)); break;
+      case Where::Pressures:
+        check_attribute_count(stroke_.pressures.size());
+        stroke_.pressures.push_back(finite_float(v));
+        break;
       case Where::Timestamps:
+        check_attribute_count(stroke_.timestamps_ms.size());
         stroke_.timestamps_ms.push_back(uint32(v, "a timestamp (integer milliseconds >= 0)"));
         break;
       case Where::Color:
@@ -404,7 +417,10 @@ class SketchSax {
         if (f.index != want)
           fail(path(stack_.size() - 1), "expected " + std::to_string(want) + " numbers, got " +
                                             std::to_string(f.index));
-        if (f.where == Where::Point) stroke_.points.emplace_back(tuple_[0], tuple_[1], tuple_[2]);
+        if (f.where == Where::Point) {
+          budget_.take(1);
+          stroke_.points.emplace_back(tuple_[0], tuple_[1], tuple_[2]);
+        }
         if (f.where == Where::Orientation)
           stroke_.orientations.emplace_back(tuple_[3], tuple_[0], tuple_[1], tuple_[2]);
         break;
@@ -453,6 +469,7 @@ class SketchSax {
   std::filesystem::path name_;
   Warnings* warnings_;
   std::function<std::uint64_t()> offset_;
+  PointBudget budget_;
   std::set<std::string> warned_;
   std::vector<Frame> stack_;
   Sketch sketch_;

@@ -5,6 +5,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/atomic_file.h"
+#include "surfacing/sketch/io/input_limits.h"
 #include "surfacing/sketch/io/text_io.h"
 
 namespace sketchsurf {
@@ -105,6 +106,7 @@ Sketch read_obj_polylines(const std::filesystem::path& file, Warnings* warnings)
   std::set<std::string> unknown;
   std::string_view line;
   std::string why;
+  PointBudget vertex_budget(file), point_budget(file);
   while (lines.next(line)) {
     io_detail::split_tokens(line, tokens);
     if (tokens.empty() || tokens[0].front() == '#') continue;
@@ -121,10 +123,13 @@ Sketch read_obj_polylines(const std::filesystem::path& file, Warnings* warnings)
                                          " is not a number");
         p[c] = *d;
       }
+      vertex_budget.take(1);
       vertices.push_back(p);
     } else if (kind == "l") {
       if (tokens.size() < 3)
         throw Error::input_at_line(file, lines.line_number(), "a line needs at least 2 vertices");
+      // An `l` record may name one vertex many times: its points are counted, not its bytes.
+      point_budget.take(tokens.size() - 1);
       Chain chain;
       chain.reserve(tokens.size() - 1);
       for (std::size_t k = 1; k < tokens.size(); ++k) {

@@ -316,6 +316,7 @@ Sketch parse_data_sketch(Bytes data, const fs::path& where, const Metadata& meta
   Sketch sketch;
   sketch.strokes.reserve(static_cast<std::size_t>(num_strokes));
   std::size_t empty_strokes = 0, unknown_brushes = 0, unknown_layers = 0;
+  PointBudget budget(where);
   for (std::int32_t s = 0; s < num_strokes; ++s) {
     r.set_stroke(s);
     Stroke stroke;
@@ -363,6 +364,7 @@ Sketch parse_data_sketch(Bytes data, const fs::path& where, const Metadata& meta
     const bool has_time = cp_mask & 2u;
     const std::size_t time_at = kPointFixedBytes + (has_pressure ? 4 : 0);
     const auto count = static_cast<std::size_t>(n);
+    budget.take(count);
     stroke.points.resize(count);
     stroke.orientations.resize(count);
     if (has_pressure) stroke.pressures.resize(count);

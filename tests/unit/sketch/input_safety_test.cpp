@@ -63,6 +63,63 @@ TEST(InputLimits, DefaultsAndEnvironment) {
   }
   const ScopedEnv bad("SKETCHSURF_MAX_INPUT_MB", "-5");  // ignored: the default stays
   EXPECT_EQ(InputLimits::from_environment().file_bytes, 256ull << 20);
+  EXPECT_EQ(InputLimits::from_environment().points, 10'000'000u);
+  const ScopedEnv points("SKETCHSURF_MAX_POINTS", "25000000");
+  EXPECT_EQ(InputLimits::from_environment().points, 25'000'000u);
+}
+
+TEST(InputLimits, SketchesOverThePointLimitAreRefusedInEveryFormat) {
+  TempDir dir;
+  Sketch sketch;
+  for (int s = 0; s < 3; ++s) {
+    Stroke stroke;
+    for (int i = 0; i < 40; ++i) stroke.points.emplace_back(0.01 * i, 0.1 * s, 0.5);
+    sketch.strokes.push_back(stroke);
+  }
+  for (const std::string ext : {".json", ".tilt", ".obj", ".curves"})
+    write_sketch(sketch, dir / ("s" + ext));
+  for (const std::string ext : {".json", ".tilt", ".obj", ".curves"}) {
+    const auto file = dir / ("s" + ext);
+    {
+      const ScopedEnv points("SKETCHSURF_MAX_POINTS", "120");  // exactly the sketch's points
+      EXPECT_EQ(read_sketch(file).point_count(), 120u) << ext;
+    }
+    const ScopedEnv points("SKETCHSURF_MAX_POINTS", "119");
+    const std::string what = input_error(file);
+    EXPECT_NE(what.find(file.string()), std::string::npos) << what;
+    EXPECT_NE(what.find("more than 119 points"), std::string::npos) << what;
+    EXPECT_NE(what.find("SKETCHSURF_MAX_POINTS=<count>"), std::string::npos) << what;
+  }
+}
+
+TEST(InputLimits, PointsAreCountedBeforeTheirMemoryIsTaken) {
+  TempDir dir;
+  // OBJ `l` records that name one vertex again and again: 2.4 MB of text would be 400k points.
+  std::string obj = "v 0 0 0\nv 1 0 0\n";
+  for (int r = 0; r < 2; ++r) {
+    obj += "l";
+    for (int i = 0; i < 200000; ++i) obj += i % 2 ? " 2" : " 1";
+    obj += "\n";
+  }
+  testing::write_text(dir / "repeat.obj", obj);
+  EXPECT_EQ(read_sketch(dir / "repeat.obj").point_count(), 400000u);
+  {
+    const ScopedEnv points("SKETCHSURF_MAX_POINTS", "300000");
+    EXPECT_NE(input_error(dir / "repeat.obj").find("more than 300000 points"), std::string::npos);
+  }
+  // A .curves header is refused as soon as it is read, not after its points.
+  testing::write_text(dir / "declared.curves", "v 2\n0 0 0\n1 0 0\nv 3\n0 0 1\n1 1 1\n2 2 2\n");
+  const ScopedEnv points("SKETCHSURF_MAX_POINTS", "4");
+  EXPECT_NE(input_error(dir / "declared.curves").find("more than 4 points"), std::string::npos);
+  // A JSON per-point attribute may not outgrow the limit either (checked against the points
+  // only at the stroke's end).
+  testing::write_text(dir / "pressures.json",
+                      R"({"format": "sketchsurf-sketch", "version": 1, "strokes": [)"
+                      R"({"points": [[0, 0, 0]], "pressures": [1, 1, 1, 1, 1, 1]}]})");
+  const std::string what = input_error(dir / "pressures.json");
+  EXPECT_NE(what.find("strokes[0].pressures[4]: more entries than the limit of 4 points"),
+            std::string::npos)
+      << what;
 }
 
 TEST(InputLimits, FilesOverTheSizeLimitAreRefusedSayingHowToRaiseIt) {
