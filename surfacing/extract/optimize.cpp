@@ -11,7 +11,7 @@
 #include "surfacing/error.h"
 #include "surfacing/extract/energy.h"
 #include "surfacing/extract/global_step.h"
-#include "surfacing/extract/lbfgs.h"
+#include "surfacing/lbfgs.h"
 #include "surfacing/parallel.h"
 
 namespace sketchsurf {

@@ -1,17 +1,11 @@
 #include "surfacing/proxy/vipss.h"
 
-#include <ceres/first_order_function.h>
-#include <ceres/gradient_problem.h>
-#include <ceres/gradient_problem_solver.h>
-#include <ceres/iteration_callback.h>
-
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 #include <Spectra/SymEigsSolver.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <optional>
 #include <string>
@@ -19,6 +13,7 @@
 #include <vector>
 
 #include "surfacing/error.h"
+#include "surfacing/lbfgs.h"
 #include "surfacing/parallel.h"
 
 namespace sketchsurf {
@@ -38,6 +33,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 constexpr int kBoxGrid = 17;  // points per side of each box face checked for a closed zero set
+constexpr int kLbfgsRank = 20;  // (s, y) pairs the L-BFGS of the normals keeps (Ceres' default)
 
 Index tiles(Index size) { return (size + kTile - 1) / kTile; }
 
@@ -125,54 +121,35 @@ void normals_from_angles(const double* angles, Index n, Vec& g) {
 }
 
 // E(angles) = g^T H g with H = S^-1 applied through the Cholesky factor of S.
-class NormalEnergy : public ceres::FirstOrderFunction {
+class NormalEnergy : public detail::LbfgsFunction {
  public:
   explicit NormalEnergy(const Mat& factor) : factor_(factor) {}
-  int NumParameters() const override { return static_cast<int>(2 * (factor_.rows() / 3)); }
-  bool Evaluate(const double* angles, double* cost, double* gradient) const override {
+  Index size() const override { return 2 * (factor_.rows() / 3); }
+  bool evaluate(const double* angles, double* cost, double* gradient) const override {
     const Index n = factor_.rows() / 3;
     Vec g(3 * n);
     normals_from_angles(angles, n, g);
     Vec h = g;
     cholesky_solve(factor_, h);
     *cost = g.dot(h);
-    if (gradient) {
-      for (Index i = 0; i < n; ++i) {
-        const double t = angles[2 * i], p = angles[2 * i + 1];
-        const Eigen::Vector3d dh = 2.0 * h.segment<3>(3 * i);
-        gradient[2 * i] = dh.dot(Eigen::Vector3d(std::cos(t) * std::cos(p),
-                                                 std::cos(t) * std::sin(p), -std::sin(t)));
-        gradient[2 * i + 1] =
-            dh.dot(Eigen::Vector3d(-std::sin(t) * std::sin(p), std::sin(t) * std::cos(p), 0.0));
-      }
+    for (Index i = 0; i < n; ++i) {
+      const double t = angles[2 * i], p = angles[2 * i + 1];
+      const Eigen::Vector3d dh = 2.0 * h.segment<3>(3 * i);
+      gradient[2 * i] = dh.dot(Eigen::Vector3d(std::cos(t) * std::cos(p),
+                                               std::cos(t) * std::sin(p), -std::sin(t)));
+      gradient[2 * i + 1] =
+          dh.dot(Eigen::Vector3d(-std::sin(t) * std::sin(p), std::sin(t) * std::cos(p), 0.0));
     }
-    return true;
+    return std::isfinite(*cost);
+  }
+  bool evaluate_step(const double* angles, double step, const double* d, double* trial, double* cost,
+                     double* gradient) const override {
+    for (Index k = 0; k < size(); ++k) trial[k] = angles[k] + step * d[k];
+    return evaluate(trial, cost, gradient);
   }
 
  private:
   const Mat& factor_;
-};
-
-// Reports L-BFGS progress; turns a cancel request into a clean abort.
-class LbfgsProgress : public ceres::IterationCallback {
- public:
-  LbfgsProgress(const Progress& progress, int max_iterations, const char* stage)
-      : progress_(progress), max_iterations_(max_iterations), stage_(stage) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-    try {
-      progress_.update(stage_, std::min(1.0, static_cast<double>(s.iteration) / max_iterations_));
-    } catch (...) {
-      error = std::current_exception();
-      return ceres::SOLVER_ABORT;
-    }
-    return ceres::SOLVER_CONTINUE;
-  }
-  std::exception_ptr error;
-
- private:
-  const Progress& progress_;
-  int max_iterations_;
-  const char* stage_;
 };
 
 // Kernel matrix blocks of the r^3 Hermite RBF (METHOD.md section 1):
@@ -406,24 +383,25 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
     std::string termination;
   };
   auto optimum = [&](std::vector<double> angles, std::size_t start) {
-    ceres::GradientProblem problem(new NormalEnergy(s));  // takes ownership
-    ceres::GradientProblemSolver::Options solver_options;
-    solver_options.line_search_direction_type = ceres::LBFGS;
-    solver_options.max_num_iterations = options.max_iterations;
-    solver_options.function_tolerance = options.function_tolerance;
-    solver_options.gradient_tolerance = options.gradient_tolerance;
-    solver_options.parameter_tolerance = 1e-14;
-    solver_options.logging_type = ceres::SILENT;
-    LbfgsProgress callback(progress, std::max(1, options.max_iterations),
-                           start == 0 ? "vipss: optimising normals"
-                                      : "vipss: optimising normals (second start)");
-    solver_options.callbacks.push_back(&callback);
-    ceres::GradientProblemSolver::Summary summary;
-    ceres::Solve(solver_options, problem, angles.data(), &summary);
-    if (callback.error) std::rethrow_exception(callback.error);
-    result.summary.lbfgs_iterations += static_cast<int>(summary.iterations.size()) - 1;
+    const NormalEnergy energy(s);
+    detail::LbfgsOptions lbfgs_options;
+    lbfgs_options.rank = kLbfgsRank;
+    lbfgs_options.max_iterations = options.max_iterations;
+    lbfgs_options.function_tolerance = options.function_tolerance;
+    lbfgs_options.gradient_tolerance = options.gradient_tolerance;
+    lbfgs_options.stall_window = 0;
+    lbfgs_options.scale_initial_hessian = true;
+    const char* stage = start == 0 ? "vipss: optimising normals" : "vipss: optimising normals (second start)";
+    const double iterations = std::max(1, options.max_iterations);
+    const WorkerTeam team(1);  // 2n variables: one vector chunk
+    const detail::LbfgsOutcome outcome =
+        detail::minimize_lbfgs(energy, angles.data(), lbfgs_options, team, [&](int iteration) {
+          progress.update(stage, std::min(1.0, iteration / iterations));
+        });
+    if (!outcome.usable) throw Error::processing("VIPSS: " + outcome.termination);
+    result.summary.lbfgs_iterations += outcome.iterations;
     Candidate made;
-    made.termination = summary.message;
+    made.termination = outcome.termination;
     // Coefficients: b = H g; [a; c] = -A_r^-1 [G_vg b; N_g^T b] through the null-space factors.
     Vec g(3 * n);
     normals_from_angles(angles.data(), n, g);
@@ -476,7 +454,10 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
   };
   const std::vector<double> eigen_start =
       to_angles([&](Index i) -> Eigen::Vector3d { return v0.segment<3>(3 * i); });
-  NormalEnergy(s).Evaluate(eigen_start.data(), &result.summary.initial_energy, nullptr);
+  {
+    std::vector<double> gradient(eigen_start.size());
+    NormalEnergy(s).evaluate(eigen_start.data(), &result.summary.initial_energy, gradient.data());
+  }
   Candidate best = optimum(eigen_start, 0);
   if (!best.closed) {
     const Eigen::Vector3d centroid = x.colwise().mean().transpose();

@@ -1,6 +1,7 @@
 #pragma once
 // Limited-memory BFGS on a function of many variables whose vector work runs on a WorkerTeam:
-// the solve of optimize_mesh(). Private to the extract room.
+// the solve of optimize_mesh() (extract) and of the VIPSS normals (proxy). Internal to the
+// library: neither room's public header exposes it.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -38,6 +39,9 @@ class LbfgsFunction {
 /// When minimize_lbfgs() stops, and its memory.
 struct LbfgsOptions {
   int rank = 8;                       ///< (s, y) pairs kept
+  bool scale_initial_hessian = false; ///< H0 = (s.y / y.y) I of the newest pair (Nocedal and
+                                      ///< Wright Eq. 7.20) instead of I: for variables the
+                                      ///< caller cannot scale beforehand
   int max_iterations = 300;           ///< iteration cap
   double function_tolerance = 1e-8;   ///< relative cost decrease of one iteration that stops it
   double gradient_tolerance = 1e-6;   ///< largest gradient entry that stops it (absolute)
@@ -55,14 +59,15 @@ struct LbfgsOutcome {
 };
 
 /// Limited-memory BFGS (Nocedal and Wright 2006, Alg. 7.4-7.5) with H0 = I (the caller scales
-/// the variables, e.g. Jacobi) and a backtracking Armijo line search from the unit step. What
-/// Ceres' GradientProblemSolver does with LBFGS and its Wolfe search, but the vector operations
-/// run over fixed chunks of the variables on the team's threads (the sums in a fixed order: the
-/// result does not depend on the thread count), the two-loop recursion fusing each update with
-/// the next dot product. Stops as Ceres does (largest gradient entry <= gradient_tolerance,
-/// relative cost decrease <= function_tolerance, or max_iterations), or on the stall test.
-/// x0 (f.size() values) is the start and receives the lowest-cost iterate however it ends.
-/// `on_iteration(i)` runs after iteration i (0: the start) and may throw to stop.
+/// the variables, e.g. Jacobi; or the scaled identity, scale_initial_hessian) and a backtracking
+/// Armijo line search from the unit step. What Ceres' GradientProblemSolver does with LBFGS and
+/// its Wolfe search, but the vector operations run over fixed chunks of the variables on the
+/// team's threads (the sums in a fixed order: the result does not depend on the thread count),
+/// the two-loop recursion fusing each update with the next dot product. Stops as Ceres does
+/// (largest gradient entry <= gradient_tolerance, relative cost decrease <= function_tolerance,
+/// or max_iterations), or on the stall test. x0 (f.size() values) is the start and receives the
+/// lowest-cost iterate however it ends. `on_iteration(i)` runs after iteration i (0: the start)
+/// and may throw to stop.
 LbfgsOutcome minimize_lbfgs(const LbfgsFunction& f, double* x0, const LbfgsOptions& options, const WorkerTeam& team,
                             const std::function<void(int)>& on_iteration);
 

@@ -1,4 +1,4 @@
-#include "surfacing/extract/lbfgs.h"
+#include "surfacing/lbfgs.h"
 
 #include <algorithm>
 #include <sstream>
@@ -33,6 +33,7 @@ LbfgsOutcome minimize_lbfgs(const LbfgsFunction& f, double* x0, const LbfgsOptio
   std::vector<Eigen::VectorXd> S(static_cast<std::size_t>(rank), Eigen::VectorXd(m)), Y = S;
   std::vector<double> rho(static_cast<std::size_t>(rank)), alpha(static_cast<std::size_t>(rank));
   int stored = 0, newest = -1;
+  double gamma = 1.0;  // H0 = gamma I
   LbfgsOutcome out;
   double cost = 0.0;
   std::vector<double> costs;  // the cost after each iteration, 0 the start
@@ -70,6 +71,10 @@ LbfgsOutcome minimize_lbfgs(const LbfgsFunction& f, double* x0, const LbfgsOptio
         seg -= alpha[i] * Y[i].segment(lo, hi - lo);
         return last ? Y[i].segment(lo, hi - lo).dot(seg) : S[slot(age + 1)].segment(lo, hi - lo).dot(seg);
       });
+    }
+    if (stored > 0 && gamma != 1.0) {  // H0 = gamma I
+      for_chunks([&](Eigen::Index lo, Eigen::Index size) { d.segment(lo, size) *= gamma; });
+      dot *= gamma;
     }
     for (int age = stored - 1; age >= 0; --age) {
       const std::size_t i = slot(age);
@@ -123,6 +128,7 @@ LbfgsOutcome minimize_lbfgs(const LbfgsFunction& f, double* x0, const LbfgsOptio
     if (sy > 1e-14 * yy) {
       newest = static_cast<int>(next);
       rho[next] = 1.0 / sy;
+      if (options.scale_initial_hessian) gamma = sy / yy;
       stored = std::min(stored + 1, rank);
     } else if (stored == rank) {
       stored = rank - 1;  // the oldest pair's slot was overwritten
