@@ -24,6 +24,8 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global);
 void add_segment_command(CLI::App& app, const GlobalOptions& global);
 /// `surface` (cmd_surface.cpp): the final piecewise-smooth surface, the whole method (paper §4-5).
 void add_surface_command(CLI::App& app, const GlobalOptions& global);
+/// `batch` (cmd_batch.cpp): `surface` on every sketch of folders or files, one process each.
+void add_batch_command(CLI::App& app, const GlobalOptions& global);
 /// `eval` (cmd_eval.cpp): a surface against its ground truth (accuracy, completeness, creases).
 void add_eval_command(CLI::App& app, const GlobalOptions& global);
 /// `synth` (cmd_synth.cpp): a synthetic sketch drawn on a mesh, clean or VR-like.

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   cli::add_proxy_command(app, global);
   cli::add_segment_command(app, global);
   cli::add_surface_command(app, global);
+  cli::add_batch_command(app, global);
   cli::add_eval_command(app, global);
   cli::add_synth_command(app, global);
 #ifdef SKETCHSURF_HAVE_ENGINE
