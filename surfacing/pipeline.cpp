@@ -21,7 +21,7 @@ bool PrepareOptions::valid(std::string* why) const {
     if (why) *why = "prepare.min_points must be at least 2";
     return false;
   }
-  return decorations.valid(why) && mirror_detection.valid(why);
+  return decorations.valid(why) && openings.valid(why) && mirror_detection.valid(why);
 }
 
 bool Params::valid(std::string* why) const {
@@ -55,6 +55,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"prepare.resample_spacing", setter([](Params& p) -> auto& { return p.prepare.resample_spacing; })},
       {"prepare.min_points", setter([](Params& p) -> auto& { return p.prepare.min_points; })},
       {"prepare.ignore_decorations", setter([](Params& p) -> auto& { return p.prepare.ignore_decorations; })},
+      {"prepare.open_rims", setter([](Params& p) -> auto& { return p.prepare.open_rims; })},
       {"proxy.points", setter([](Params& p) -> auto& { return p.proxy.points; })},
       {"proxy.lambda", setter([](Params& p) -> auto& { return p.proxy.lambda; })},
       {"proxy.edge", setter([](Params& p) -> auto& { return p.proxy.edge; })},
@@ -180,6 +181,11 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
       throw Error(ErrorKind::Input, "no stroke is left to surface once the strokes that depict no "
                                     "surface are ignored; keep them with prepare.ignore_decorations = 0");
   }
+  const auto is_boundary = [](const Stroke& s) { return s.boundary && !s.ignored; };
+  if (params_.prepare.open_rims && std::none_of(sketch.strokes.begin(), sketch.strokes.end(), is_boundary)) {
+    report.openings = find_openings(sketch, params_.prepare.openings);
+    for (const Opening& o : report.openings) sketch.strokes[o.stroke].boundary = true;
+  }
   if (!sketch.mirror) report.symmetry = detect_mirror(sketch, params_.prepare.mirror_detection);
   report.strokes = sketch.strokes.size();
   report.points = sketch.point_count();
@@ -231,8 +237,7 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   report.stroke_distance = stroke_distance(result.mesh, measured, report.diagonal);
   t = Clock::now();
   progress.update("checks", 0.0);
-  const bool open_expected = std::any_of(sketch.strokes.begin(), sketch.strokes.end(),
-                                         [](const Stroke& s) { return s.boundary; });
+  const bool open_expected = std::any_of(sketch.strokes.begin(), sketch.strokes.end(), is_boundary);
   CheckOptions checks = params_.checks;
   if (checks.threads == 0) checks.threads = params_.segment.threads;
   report.checks = check_shape(result.mesh, result.labels, sketch, open_expected, checks);

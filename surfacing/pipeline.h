@@ -27,6 +27,7 @@
 #include "surfacing/quality/checks.h"
 #include "surfacing/segment/pearl.h"
 #include "surfacing/sketch/decorations.h"
+#include "surfacing/sketch/openings.h"
 #include "surfacing/sketch/sketch.h"
 #include "surfacing/sketch/symmetry.h"
 
@@ -39,6 +40,10 @@ struct PrepareOptions {
   bool ignore_decorations = true;   ///< strokes that depict no surface (a dot apart, a stroke
                                     ///< hanging by one end) are marked ignored (decorations.h)
   DecorationOptions decorations;
+  bool open_rims = true;            ///< rims with nothing drawn across or beyond them (a cup's top)
+                                    ///< become boundary strokes, unless the sketch marks some
+                                    ///< boundary itself (openings.h)
+  OpeningOptions openings;
   MirrorDetectOptions mirror_detection;  ///< finding a mirror plane the sketch was not given
   bool valid(std::string* why) const;
 };
@@ -65,6 +70,7 @@ struct SurfaceReport {
   CleanReport cleaning;
   std::size_t strokes = 0, points = 0;  ///< after preparation (ignored strokes included)
   std::vector<Decoration> decorations;  ///< strokes ignored as depicting no surface
+  std::vector<Opening> openings;        ///< rims found and made boundary strokes
   std::optional<DetectedMirror> symmetry;  ///< a mirror plane the strokes have, when the sketch
                                            ///< was given none (reported, not applied)
   double diagonal = 0.0;                ///< of the prepared sketch's bounding box, sketch units

@@ -9,6 +9,7 @@
 #include "surfacing/error.h"
 #include "surfacing/segment/association.h"
 #include "surfacing/segment/maxflow.h"
+#include "surfacing/sketch/openings.h"
 
 namespace sketchsurf {
 
@@ -93,6 +94,31 @@ std::vector<double> geodesic_distance(const TriMesh& mesh, const std::vector<int
   return dist;
 }
 
+/// The boundary strokes of `sketch` that close into a loop (completed by their mirror image when
+/// `mirror` cuts them), each oriented toward its empty side; loops with strokes across them or on
+/// both sides are left out.
+std::vector<StrokeLoop> boundary_openings(const Sketch& sketch, const std::optional<Plane>& mirror) {
+  std::vector<Eigen::Vector3d> interior;
+  for (const Stroke& s : sketch.strokes)
+    if (!s.ignored && !s.boundary) interior.insert(interior.end(), s.points.begin(), s.points.end());
+  std::vector<StrokeLoop> loops;
+  for (const Stroke& s : sketch.strokes) {
+    if (!s.boundary || s.ignored) continue;
+    std::optional<StrokeLoop> loop = stroke_loop(s.points);
+    if (!loop && mirror) {
+      std::vector<Eigen::Vector3d> whole = s.points;
+      for (auto p = s.points.rbegin(); p != s.points.rend(); ++p) whole.push_back(mirror->reflect(*p));
+      loop = stroke_loop(whole);
+    }
+    if (!loop) continue;
+    const LoopSides sides = loop_sides(*loop, interior);
+    if (sides.across > 0 || (sides.above > 0) == (sides.below > 0)) continue;
+    if (sides.above > 0) loop->flip();
+    loops.push_back(std::move(*loop));
+  }
+  return loops;
+}
+
 }  // namespace
 
 TrimResult trim_open_surface(const TriMesh& proxy, const Sketch& sketch,
@@ -136,8 +162,20 @@ TrimResult trim_open_surface(const TriMesh& proxy, const Sketch& sketch,
     for (const Stroke& s : sketch.strokes)
       if (!s.ignored) stroke_points.insert(stroke_points.end(), s.points.begin(), s.points.end());
     const NearPoints near_strokes(stroke_points, options.outside_distance * diagonal);
-    for (auto v : proxy.vertices())
-      outside[v.idx()] = !inside[v.idx()] && !near_strokes.near(to_eigen(proxy.point(v)));
+    const std::vector<StrokeLoop> openings = boundary_openings(sketch, mirror);
+    const OpeningOptions loop_options;
+    const auto in_opening = [&](const Eigen::Vector3d& p) {
+      return std::any_of(openings.begin(), openings.end(), [&](const StrokeLoop& loop) {
+        return loop.height(p) >= -loop_options.thickness * loop.radius &&
+               loop.encloses(p, loop_options.margin * loop.radius);
+      });
+    };
+    // A boundary loop with an empty side says where the outside is; without one, whatever lies
+    // far from the strokes is (between sparse strokes the wall of a cup is far from them too).
+    for (auto v : proxy.vertices()) {
+      const Eigen::Vector3d p = to_eigen(proxy.point(v));
+      outside[v.idx()] = !inside[v.idx()] && (openings.empty() ? !near_strokes.near(p) : in_opening(p));
+    }
   }
   result.sink_seeds = std::count(inside.begin(), inside.end(), 1);
   result.source_seeds = std::count(outside.begin(), outside.end(), 1);

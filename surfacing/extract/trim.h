@@ -41,7 +41,10 @@ struct TrimResult {
 /// App. D: projects the boundary strokes of `sketch` (Stroke::boundary, not ignored) onto `proxy`
 /// (association of App. A); edges they cross cost 0 to cut, every other edge its length. Source
 /// (outside): the proxy's boundary vertices, except those within `plane_tolerance` (mesh units) of
-/// the mirror plane; when there are none (closed proxy), vertices farther than outside_distance
+/// the mirror plane; when there are none (closed proxy), the vertices that cap a boundary loop
+/// with nothing drawn across it (inside its outline, on its empty side: stroke_loop() and
+/// loop_sides() of openings.h with their default tests; a loop cut by the mirror plane is
+/// completed by its image), or without such a loop the vertices farther than outside_distance
 /// from every stroke point. Sink
 /// (inside): vertices with stroke points of non-boundary strokes, geodesically farther than
 /// inside_distance from the boundary strokes. Faces with an outside corner are removed, then the

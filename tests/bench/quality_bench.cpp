@@ -4,7 +4,9 @@
 // surface and the proxy alone lie from the true surface, how much of the truth they cover, the
 // creases found, the shape checks and the time. One Markdown table on stdout, medians at the end;
 // docs/quality.md keeps the output of each change that matters.
-//   quality_bench [--cases box,mug,...] [--styles net,vr] [--restarts N] [--seed N]
+//   quality_bench [--cases box,mug,...] [--styles net,vr] [--restarts N] [--seed N] [--write DIR]
+// --write DIR keeps, per case and style, the truth, the sketch, the proxy and the final surface
+// (CASE-STYLE.truth.ply, .json, .proxy.ply, .ply) to look at or re-run with the CLI.
 // Deviations are fractions of the truth's bounding-box diagonal, in percent.
 
 #include <algorithm>
@@ -23,6 +25,7 @@
 #include "surfacing/quality/eval.h"
 #include "surfacing/quality/synth.h"
 #include "surfacing/sketch/io/mesh_io.h"
+#include "surfacing/sketch/io/sketch_io.h"
 #include "tests/support/truth_suite.h"
 
 namespace {
@@ -75,11 +78,13 @@ int main(int argc, char** argv) {
   std::vector<std::string> styles = {"net", "vr"};
   Params params;
   unsigned seed = 1;
+  std::filesystem::path write_dir;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--cases")) cases = split(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--styles")) styles = split(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--restarts")) params.segment.restarts = std::stoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--seed")) seed = static_cast<unsigned>(std::stoul(argv[i + 1]));
+    else if (!std::strcmp(argv[i], "--write")) write_dir = argv[i + 1];
     else {
       std::cerr << "quality_bench: unknown option " << argv[i] << "\n";
       return 2;
@@ -100,12 +105,24 @@ int main(int argc, char** argv) {
       synth.style = style == "vr" ? SynthOptions::Style::Vr : SynthOptions::Style::Net;
       synth.seed = seed;
       const Sketch sketch = synthesize_sketch(truth, synth);
+      std::string stem = name + "-" + style;
+      std::replace(stem.begin(), stem.end(), '/', '_');
+      const std::filesystem::path kept = write_dir / stem;
+      if (!write_dir.empty()) {
+        std::filesystem::create_directories(write_dir);
+        write_mesh(truth, kept.string() + ".truth.ply");
+        write_sketch(sketch, kept.string() + ".json");
+      }
       std::cout << "| " << name << " | " << style << " | " << sketch.strokes.size() << " | ";
       const auto start = std::chrono::steady_clock::now();
       try {
         const SurfaceResult result = Surfacer(params).run(sketch);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!write_dir.empty()) {
+          write_mesh(result.proxy, kept.string() + ".proxy.ply");
+          write_mesh(result.mesh, kept.string() + ".ply");
+        }
         const Evaluation final_eval = evaluate(result.mesh, truth);
         const Evaluation proxy_eval = evaluate(result.proxy, truth);
         const Row row{proxy_eval.accuracy.median, proxy_eval.accuracy.p95, final_eval.accuracy.median,

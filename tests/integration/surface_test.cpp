@@ -225,3 +225,55 @@ TEST(Surface, AnAntennaStrokeIsIgnoredAndMakesNoSpike) {
 
 }  // namespace
 }  // namespace sketchsurf
+
+namespace sketchsurf {
+namespace {
+
+/// Boundary loops of a mesh (closed chains of boundary halfedges).
+std::size_t boundary_loops(const TriMesh& mesh) {
+  std::vector<std::uint8_t> seen(mesh.n_halfedges(), 0);
+  std::size_t loops = 0;
+  for (auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
+    ++loops;
+    for (auto g = h; !seen[g.idx()]; g = mesh.next_halfedge_handle(g)) seen[g.idx()] = 1;
+  }
+  return loops;
+}
+
+/// The surfaced cup: open at its rim (one boundary loop on the rim stroke, nothing left of the
+/// cap), closed when asked; `mirrored` surfaces half of it about x = 0.
+void expect_open_cup(bool mirrored) {
+  Sketch cup = testing::cup_sketch();  // rim radius 0.5 at z = 0.8
+  if (mirrored) cup.mirror = Plane{};
+  Params params;
+  params.segment.restarts = 2;
+  const SurfaceResult open = Surfacer(params).run(cup);
+  ASSERT_EQ(open.report.openings.size(), 1u);
+  EXPECT_EQ(open.report.openings[0].id, 1);
+  EXPECT_TRUE(open.report.extraction.open);
+  EXPECT_EQ(boundary_loops(open.mesh), 1u);
+  for (auto v : open.mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(open.mesh.point(v));
+    EXPECT_LT(p.z(), 0.8 + 0.01);
+    if (open.mesh.is_boundary(v)) {  // on the rim stroke
+      EXPECT_NEAR(p.z(), 0.8, 0.01);
+      EXPECT_NEAR(std::hypot(p.x(), p.y()), 0.5, 0.01);
+    } else if (p.z() > 0.7) {        // no cap left: everything up there is the wall
+      EXPECT_GT(std::hypot(p.x(), p.y()), 0.4) << p.transpose();
+    }
+  }
+  EXPECT_TRUE(open.report.checks.warnings.empty());
+
+  params.prepare.open_rims = false;
+  const SurfaceResult closed = Surfacer(params).run(cup);
+  EXPECT_TRUE(closed.report.openings.empty());
+  EXPECT_EQ(boundary_loops(closed.mesh), 0u);
+}
+
+TEST(Surface, ACupIsOpenAtItsRim) { expect_open_cup(false); }
+
+TEST(Surface, AMirroredCupIsOpenAtItsRim) { expect_open_cup(true); }
+
+}  // namespace
+}  // namespace sketchsurf

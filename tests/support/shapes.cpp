@@ -115,6 +115,27 @@ Sketch cylinder_sketch(double radius, double height, int side_strokes) {
   return sketch;
 }
 
+Sketch cup_sketch(double rim, double bottom, double height, int sections) {
+  Sketch sketch;
+  sketch.provenance = "generated cup";
+  const double spacing = rim / 40;
+  for (const auto& [r, z] : {std::pair{bottom, 0.0}, std::pair{rim, height}})
+    add_stroke(sketch, sample_curve([&](double t) -> V3 {
+      return {r * std::cos(t), r * std::sin(t), z};
+    }, 0.0, 2 * M_PI, spacing));
+  for (int i = 0; i < sections; ++i) {
+    const double a = M_PI * (i + 0.25) / sections;
+    const V3 d(std::cos(a), std::sin(a), 0.0);
+    // Arc length parameter: side down (0..1), bottom across (1..2), side up (2..3).
+    add_stroke(sketch, sample_curve([&](double t) -> V3 {
+      if (t < 1.0) return (rim + (bottom - rim) * t) * d + V3(0, 0, height * (1.0 - t));
+      if (t < 2.0) return bottom * (1.0 - 2.0 * (t - 1.0)) * d;
+      return -(bottom + (rim - bottom) * (t - 2.0)) * d + V3(0, 0, height * (t - 2.0));
+    }, 0.0, 3.0, spacing));
+  }
+  return sketch;
+}
+
 Sketch sphere_sketch(double radius, int meridians) {
   Sketch sketch;
   sketch.provenance = "generated sphere";

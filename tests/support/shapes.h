@@ -24,6 +24,11 @@ Sketch cube_sketch(double side = 1.0, bool cross_strokes = true);
 /// along the side, and one stroke across each cap.
 Sketch cylinder_sketch(double radius = 0.5, double height = 1.0, int side_strokes = 4);
 
+/// Open cup around +z, standing on z = 0 and open at z = height: the rim circle (radius `rim`),
+/// the bottom circle (radius `bottom`) and `sections` U-shaped strokes, each down one side,
+/// across the bottom through the axis and up the opposite side. Nothing crosses the opening.
+Sketch cup_sketch(double rim = 0.5, double bottom = 0.35, double height = 0.8, int sections = 2);
+
 /// Sphere centred at the origin: `meridians` great half-circles through the poles and the equator.
 Sketch sphere_sketch(double radius = 0.5, int meridians = 4);
 

@@ -33,6 +33,7 @@ struct SurfaceCommandOptions {
   std::optional<std::uint64_t> seed;
   std::optional<unsigned> threads;
   bool keep_all_strokes = false;
+  bool closed = false;
 };
 
 /// "x", "y", "z" (the plane through the origin with that normal) or "a,b,c,d" (a x + b y + c z +
@@ -140,6 +141,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                            {"points", rep.stroke_distance.points}}},
       {"checks", checks_json(rep.checks)},
       {"decorations", decorations_json(rep.decorations)},
+      {"openings", openings_json(rep.openings)},
       {"symmetry", rep.symmetry ? nlohmann::json{{"normal", {rep.symmetry->plane.normal.x(), rep.symmetry->plane.normal.y(),
                                                              rep.symmetry->plane.normal.z()}},
                                                  {"offset", rep.symmetry->plane.offset},
@@ -175,6 +177,7 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
   }
   if (opt.seed) params.segment.seed = *opt.seed;
   if (opt.keep_all_strokes) params.prepare.ignore_decorations = false;
+  if (opt.closed) params.prepare.open_rims = false;
   if (opt.threads)
     params.segment.threads = params.proxy.threads = params.extract.energy.threads =
         params.extract.seams.threads = *opt.threads;
@@ -234,6 +237,12 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
       std::cerr << " " << d.id << (d.kind == DecorationKind::SmallGroup ? " (small group apart)" : " (hangs by one end)");
     std::cerr << "); --keep-all-strokes keeps them\n";
   }
+  if (!global.quiet && !result.report.openings.empty()) {
+    std::cerr << opt.sketch << ": note: opened the surface at " << result.report.openings.size()
+              << " rim(s) with nothing drawn across or beyond them (stroke id";
+    for (const Opening& o : result.report.openings) std::cerr << " " << o.id;
+    std::cerr << "); --closed keeps the surface closed\n";
+  }
   if (!global.quiet && result.report.symmetry) {
     // Four digits, round-off noise shown as 0: the plane as a user would type it.
     const auto num = [&](double v, double noise) {
@@ -282,6 +291,9 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
                 "Surface every stroke, also those that seem to depict no surface (a dot apart, a "
                 "stroke hanging by one end)");
+  cmd->add_flag("--closed", opt->closed,
+                "Keep the surface closed: do not open it at rims found in the strokes (a closed loop "
+                "with nothing drawn across or beyond it, such as a cup's top)");
   cmd->callback([opt, &global] { run_surface(*opt, global); });
 }
 

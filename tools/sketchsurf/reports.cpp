@@ -43,6 +43,19 @@ nlohmann::json decorations_json(const std::vector<Decoration>& decorations) {
   return out;
 }
 
+nlohmann::json openings_json(const std::vector<Opening>& openings) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Opening& o : openings) {
+    const Eigen::Vector3d& n = o.loop.plane.normal;
+    const Eigen::Vector3d& c = o.loop.center;
+    out.push_back({{"id", o.id},
+                   {"normal", {n.x(), n.y(), n.z()}},
+                   {"center", {c.x(), c.y(), c.z()}},
+                   {"radius", o.loop.radius}});
+  }
+  return out;
+}
+
 double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

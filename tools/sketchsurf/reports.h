@@ -6,6 +6,7 @@
 #include "surfacing/quality/checks.h"
 #include "surfacing/segment/pearl.h"
 #include "surfacing/sketch/decorations.h"
+#include "surfacing/sketch/openings.h"
 
 namespace sketchsurf::cli {
 
@@ -18,6 +19,8 @@ nlohmann::json checks_json(const ShapeChecks& checks);
 
 /// The strokes ignored as decorations: [{id, kind: "small group" | "dangling"}].
 nlohmann::json decorations_json(const std::vector<Decoration>& decorations);
+/// Rims made boundary strokes: stroke id, the normal through the opening, centre and radius.
+nlohmann::json openings_json(const std::vector<Opening>& openings);
 
 /// Peak resident set size of this process so far, in MiB.
 double peak_rss_mb();
