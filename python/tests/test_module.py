@@ -1,0 +1,97 @@
+"""The module: sketches read and written, surface() on NumPy arrays, progress, cancel, the GIL."""
+
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import sketchsurf
+from conftest import QUICK
+
+
+def test_reads_and_writes_sketches(cube, tmp_path):
+    assert len(cube) == 18
+    strokes = cube.strokes
+    assert all(s.dtype == np.float64 and s.ndim == 2 and s.shape[1] == 3 for s in strokes)
+    assert sum(len(s) for s in strokes) == cube.point_count
+    sketchsurf.write_sketch(cube, str(tmp_path / "copy.curves"))
+    copy = sketchsurf.read_sketch(str(tmp_path / "copy.curves"))
+    assert len(copy) == 18
+    for a, b in zip(strokes, copy.strokes):
+        np.testing.assert_allclose(a, b, atol=1e-6)
+
+
+def test_sketch_from_arrays_and_bad_input(tmp_path):
+    sketch = sketchsurf.Sketch([np.zeros((4, 3)), np.ones((2, 3))])
+    assert len(sketch) == 2 and sketch.point_count == 6
+    with pytest.raises(ValueError, match=r"\(n, 3\)"):
+        sketchsurf.Sketch([np.zeros((4, 2))])
+    broken = tmp_path / "broken.json"
+    broken.write_text('{"format": "sketchsurf-sketch", "version": 1, "strokes": [')
+    with pytest.raises(sketchsurf.SketchsurfError, match="broken.json") as e:
+        sketchsurf.read_sketch(str(broken))
+    assert e.value.kind == "input"
+    with pytest.raises(sketchsurf.SketchsurfError, match="segment.no_such") as e:
+        sketchsurf.surface(sketch, {"segment.no_such": 1})
+    assert e.value.kind == "usage"
+
+
+def test_surfaces_the_cube_from_arrays_with_progress_and_the_gil_released(cube):
+    stages = []
+    result = {}
+
+    def run():
+        result["out"] = sketchsurf.surface(cube.strokes, QUICK)
+
+    # Without a callback the run never takes the GIL: this thread keeps running meanwhile.
+    worker = threading.Thread(target=run)
+    worker.start()
+    ticks = 0
+    while worker.is_alive():
+        ticks += 1
+        time.sleep(0.005)
+    worker.join()
+    assert ticks >= 20
+
+    V, F, labels, sharp, report = result["out"]
+    assert V.shape[1] == 3 and V.dtype == np.float64
+    assert F.shape[1] == 3 and F.min() >= 0 and F.max() < len(V)
+    assert labels.shape == (len(V),) and sharp.shape == (len(V),) and sharp.dtype == bool
+    # The cube's six faces: six regions, their vertices on six planes through the face centres.
+    assert report["regions"] == 6 and len(np.unique(labels)) == 6
+    assert report["stroke_distance"]["median"] < 0.005
+    assert 0 < sharp.sum() < len(V)
+    for label in np.unique(labels):
+        points = V[labels == label]
+        spread = np.sort(points.std(axis=0))
+        assert spread[0] < 0.05 * spread[1], spread  # flat
+
+    # The same sketch as a Sketch, with a progress callback: the same surface.
+    V2, F2, *_ = sketchsurf.surface(cube, QUICK, progress=lambda stage, f: stages.append((stage, f)))
+    np.testing.assert_array_equal(V, V2)
+    np.testing.assert_array_equal(F, F2)
+    assert stages and all(0.0 <= f <= 1.0 for _, f in stages)
+    names = {s for s, _ in stages}
+    assert {"prepare", "proxy", "segmentation", "extract", "done"} <= names, names
+
+
+def test_progress_cancels_and_its_exception_is_raised(cube):
+    with pytest.raises(sketchsurf.SketchsurfError) as e:
+        sketchsurf.surface(cube, QUICK, progress=lambda stage, fraction: False)
+    assert e.value.kind == "cancelled"
+
+    def fail(stage, fraction):
+        raise KeyError("from the callback")
+
+    with pytest.raises(KeyError, match="from the callback"):
+        sketchsurf.surface(cube, QUICK, progress=fail)
+
+
+def test_writes_meshes(tmp_path):
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    sketchsurf.write_mesh(str(tmp_path / "t.ply"), V, F, labels=[0, 0, 1, 1], sharp=[True, False, False, True])
+    assert (tmp_path / "t.ply").stat().st_size > 0
+    with pytest.raises(ValueError, match="names vertex 7"):
+        sketchsurf.write_mesh(str(tmp_path / "bad.ply"), V, np.array([[0, 1, 7]]))
