@@ -28,6 +28,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools libglfw3-dev libglm-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-pytest python3-distributed  # python/ and its tests
+  libimgui-dev xvfb xauth xdotool
   clang-14 libclang-rt-14-dev  # the reader fuzzers (tools/fuzz): Clang and its libFuzzer runtime
 )
 

@@ -216,7 +216,8 @@ void Renderer::record(VkCommandBuffer cmd, const GpuScene& scene, const Camera& 
     push(1.0f, kEdgeLift);
     vkCmdDrawIndexed(cmd, scene.edge_indices_, 1, scene.stroke_indices_, 0, 0);
   }
-  if (strokes && options.hidden_strokes && options.mesh && scene.mesh_index_count_ > 0) {
+  const bool occluded = (options.mesh && scene.mesh_index_count_ > 0) || options.occluders_drawn;
+  if (strokes && options.hidden_strokes && occluded) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ribbon_hidden_.get());
     push(options.hidden_alpha, kStrokeLift);
     vkCmdDrawIndexed(cmd, scene.stroke_indices_, 1, 0, 0, 0);

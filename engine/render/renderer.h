@@ -18,6 +18,9 @@ struct DrawOptions {
   bool hidden_strokes = true;   ///< draw strokes hidden by the surface faintly (depth-aware overlay)
   float hidden_alpha = 0.2f;    ///< opacity of hidden strokes, in [0, 1]
   bool mesh = true;             ///< draw the mesh and its outlines
+  bool occluders_drawn = false; ///< an opaque surface was drawn earlier in this pass (another
+                                ///< scene's): draw this scene's hidden strokes faintly even when it
+                                ///< has no mesh of its own
 };
 
 /// A scene's geometry in device-local buffers. Move-only.

@@ -302,6 +302,8 @@ bool SceneOptions::valid(std::string* why) const {
   if (!(sharp_angle >= 0.0)) return fail("sharp_angle must be >= 0 degrees");
   if (!(stroke_tolerance >= 0.0) || !std::isfinite(stroke_tolerance))
     return fail("stroke_tolerance must be >= 0 and finite");
+  if (!(reference_diagonal >= 0.0) || !std::isfinite(reference_diagonal))
+    return fail("reference_diagonal must be >= 0 and finite");
   return true;
 }
 
@@ -314,7 +316,9 @@ SceneGeometry build_scene(const Sketch& sketch, const TriMesh* mesh,
   if (mesh)
     for (auto v : mesh->vertices()) scene.bounds.extend(to_eigen(mesh->point(v)));
   if (!scene.bounds.empty()) scene.origin = 0.5 * (scene.bounds.min + scene.bounds.max);
-  const double diagonal = scene.bounds.diagonal() > 0.0 ? scene.bounds.diagonal() : 1.0;
+  const double diagonal = options.reference_diagonal > 0.0 ? options.reference_diagonal
+                          : scene.bounds.diagonal() > 0.0  ? scene.bounds.diagonal()
+                                                           : 1.0;
 
   RibbonBuilder ribbons(scene);
   const float stroke_half_width = float(0.5 * options.stroke_width * diagonal);

@@ -28,6 +28,9 @@ struct SceneOptions {
   bool wireframe = false;        ///< draw every mesh edge thinly
   double edge_width = 0.004;     ///< ribbon width of outlined edges, fraction of the bbox diagonal
   double wire_width = 0.0015;    ///< ribbon width of wireframe edges, fraction of the bbox diagonal
+  double reference_diagonal = 0.0; ///< when > 0, the widths are fractions of this length instead
+                                   ///< of the scene's diagonal (the studio: strokes keep their width
+                                   ///< as the sketch grows, and match across separately built scenes)
 
   /// False (with the reason in `why`) when a width is not positive and finite or the angle negative.
   bool valid(std::string* why) const;

@@ -658,6 +658,11 @@ bool SketchSession::poll_surface() {
   return true;
 }
 
+void SketchSession::set_result(SurfaceResult result) {
+  result_ = std::make_unique<SurfaceResult>(std::move(result));
+  ++result_revision_;
+}
+
 bool SketchSession::wait_surface(double timeout_s) {
   const auto until = Clock::now() + std::chrono::duration<double>(timeout_s);
   while (job_ && !job_taken_ && !job_->finished && Clock::now() < until)

@@ -184,6 +184,8 @@ class SketchSession {
   bool wait_surface(double timeout_s);
   /// The last surface computed, or nullptr.
   const SurfaceResult* result() const { return result_.get(); }
+  /// Shows `result` as the surface (one computed before, read from a file).
+  void set_result(SurfaceResult result);
   /// Changes whenever result() does.
   std::uint64_t result_revision() const { return result_revision_; }
 

@@ -44,6 +44,17 @@ bool layer_available(const char* name) {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
+bool has_device_extension(VkPhysicalDevice device, const char* name) {
+  std::uint32_t count = 0;
+  if (vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr) != VK_SUCCESS) return false;
+  std::vector<VkExtensionProperties> extensions(count);
+  if (vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()) != VK_SUCCESS)
+    return false;
+  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
+
 #ifdef NDEBUG
 constexpr bool kDebugBuild = false;
 #else
@@ -101,6 +112,7 @@ Context::Context(const ContextOptions& options) : options_(options) {
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
+  for (const auto& e : options_.instance_extensions) extensions.push_back(e.c_str());
   VkDebugUtilsMessengerCreateInfoEXT messenger_info{
       VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
@@ -148,6 +160,10 @@ Context::Context(const ContextOptions& options) : options_(options) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(physical[i], &props);
     DeviceInfo info{props.deviceName, props.deviceType, false};
+    if (options.presentation && !has_device_extension(physical[i], VK_KHR_SWAPCHAIN_EXTENSION_NAME)) {
+      infos.push_back(info);  // no graphics flag: never chosen
+      continue;
+    }
     std::uint32_t families = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical[i], &families, nullptr);
     std::vector<VkQueueFamilyProperties> family_props(families);
@@ -182,6 +198,11 @@ Context::Context(const ContextOptions& options) : options_(options) {
   VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   device_info.queueCreateInfoCount = 1;
   device_info.pQueueCreateInfos = &queue_info;
+  const char* swapchain_extension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+  if (options.presentation) {
+    device_info.enabledExtensionCount = 1;
+    device_info.ppEnabledExtensionNames = &swapchain_extension;
+  }
   VkDevice device = VK_NULL_HANDLE;
   VK_CHECK(vkCreateDevice(physical_, &device_info, nullptr, &device));
   device_ = UniqueDevice(device);

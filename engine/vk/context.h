@@ -26,6 +26,10 @@ struct ContextOptions {
   std::string device;                            ///< case-insensitive substring of the device name; empty = best
   Validation validation = Validation::DebugBuilds;  ///< Khronos validation layer
   std::function<void(const std::string&)> log;   ///< receives notable events, one line each; may be empty
+  std::vector<std::string> instance_extensions;  ///< extra instance extensions (a window system's
+                                                 ///< surface extensions, from GLFW)
+  bool presentation = false;                     ///< enable VK_KHR_swapchain; only devices that
+                                                 ///< have it are chosen
 };
 
 /// What we need to know about a physical device to choose it.

@@ -55,6 +55,8 @@ using UniquePipeline = DeviceHandle<VkPipeline, &vkDestroyPipeline>;
 using UniqueCommandPool = DeviceHandle<VkCommandPool, &vkDestroyCommandPool>;
 using UniqueFence = DeviceHandle<VkFence, &vkDestroyFence>;
 using UniqueSemaphore = DeviceHandle<VkSemaphore, &vkDestroySemaphore>;
+using UniqueDescriptorPool = DeviceHandle<VkDescriptorPool, &vkDestroyDescriptorPool>;
+using UniqueSwapchain = DeviceHandle<VkSwapchainKHR, &vkDestroySwapchainKHR>;
 
 /// Owns a handle that is destroyed by `Destroy(handle, nullptr)`: VkInstance, VkDevice.
 template <class Handle, auto Destroy>

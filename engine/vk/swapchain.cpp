@@ -1,0 +1,272 @@
+#include "engine/vk/swapchain.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "engine/vk/check.h"
+
+namespace sketchsurf::vk {
+
+namespace {
+
+VkFormat depth_format(const Context& context) {
+  for (VkFormat f : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D16_UNORM}) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(context.physical_device(), f, &props);
+    if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) return f;
+  }
+  throw Error::processing("'" + context.device_info().name + "' supports no depth format");
+}
+
+/// An 8-bit UNORM format, so that the window shows the colours the offscreen target (RGBA8
+/// UNORM) writes to PNG: the same pictures on both targets.
+VkSurfaceFormatKHR choose_format(VkPhysicalDevice device, VkSurfaceKHR surface) {
+  std::uint32_t count = 0;
+  VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(device, surface, &count, nullptr));
+  std::vector<VkSurfaceFormatKHR> formats(count);
+  VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(device, surface, &count, formats.data()));
+  if (formats.empty()) throw Error::processing("the window surface offers no format");
+  for (VkFormat wanted : {VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM})
+    for (const auto& f : formats)
+      if (f.format == wanted) return f;
+  return formats.front();
+}
+
+VkPresentModeKHR choose_mode(VkPhysicalDevice device, VkSurfaceKHR surface, bool vsync) {
+  if (vsync) return VK_PRESENT_MODE_FIFO_KHR;  // always supported
+  std::uint32_t count = 0;
+  VK_CHECK(vkGetPhysicalDeviceSurfacePresentModesKHR(device, surface, &count, nullptr));
+  std::vector<VkPresentModeKHR> modes(count);
+  VK_CHECK(vkGetPhysicalDeviceSurfacePresentModesKHR(device, surface, &count, modes.data()));
+  for (VkPresentModeKHR wanted : {VK_PRESENT_MODE_MAILBOX_KHR, VK_PRESENT_MODE_IMMEDIATE_KHR})
+    if (std::find(modes.begin(), modes.end(), wanted) != modes.end()) return wanted;
+  return VK_PRESENT_MODE_FIFO_KHR;
+}
+
+}  // namespace
+
+Swapchain::Swapchain(const Context& context, VkSurfaceKHR surface, VkExtent2D extent, bool vsync,
+                     VkSampleCountFlagBits samples)
+    : context_(&context),
+      surface_(surface),
+      vsync_(vsync),
+      samples_(context.supported_samples(samples)) {
+  VkBool32 present = VK_FALSE;
+  VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(context.physical_device(), context.queue_family(),
+                                                surface, &present));
+  if (!present)
+    throw Error::processing("'" + context.device_info().name +
+                            "' cannot present to this window; run with --headless");
+  format_ = choose_format(context.physical_device(), surface);
+  present_mode_ = choose_mode(context.physical_device(), surface, vsync);
+  depth_format_ = depth_format(context);
+
+  // Attachments as in OffscreenTarget: 0 colour (multisampled, or the swapchain image itself),
+  // 1 depth, 2 the swapchain image as resolve target (with MSAA). Final layout: PRESENT_SRC.
+  const bool msaa = samples_ != VK_SAMPLE_COUNT_1_BIT;
+  std::vector<VkAttachmentDescription> attachments;
+  VkAttachmentDescription color{};
+  color.format = format_.format;
+  color.samples = samples_;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  color.finalLayout = msaa ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  attachments.push_back(color);
+  VkAttachmentDescription depth = color;
+  depth.format = depth_format_;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  attachments.push_back(depth);
+  if (msaa) {
+    VkAttachmentDescription resolve = color;
+    resolve.samples = VK_SAMPLE_COUNT_1_BIT;
+    resolve.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    resolve.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    resolve.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    attachments.push_back(resolve);
+  }
+  const VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference resolve_ref{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &color_ref;
+  subpass.pDepthStencilAttachment = &depth_ref;
+  subpass.pResolveAttachments = msaa ? &resolve_ref : nullptr;
+  // The image is acquired (semaphore waited at COLOR_ATTACHMENT_OUTPUT) before it is written;
+  // depth is reused by the next frame only after this one's depth tests.
+  VkSubpassDependency dep{};
+  dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+  dep.dstSubpass = 0;
+  dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                     VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
+  dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  VkRenderPassCreateInfo pass_info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  pass_info.attachmentCount = static_cast<std::uint32_t>(attachments.size());
+  pass_info.pAttachments = attachments.data();
+  pass_info.subpassCount = 1;
+  pass_info.pSubpasses = &subpass;
+  pass_info.dependencyCount = 1;
+  pass_info.pDependencies = &dep;
+  VkRenderPass pass = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateRenderPass(context.device(), &pass_info, nullptr, &pass));
+  render_pass_ = UniqueRenderPass(context.device(), pass);
+  build(extent, VK_NULL_HANDLE);
+}
+
+Swapchain::~Swapchain() {
+  if (context_) vkDeviceWaitIdle(context_->device());
+}
+
+void Swapchain::recreate(VkExtent2D extent) {
+  VK_CHECK(vkDeviceWaitIdle(context_->device()));
+  framebuffers_.clear();
+  views_.clear();
+  build(extent, swapchain_.get());
+}
+
+void Swapchain::build(VkExtent2D wanted, VkSwapchainKHR old) {
+  const VkDevice device = context_->device();
+  VkSurfaceCapabilitiesKHR caps;
+  VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(context_->physical_device(), surface_, &caps));
+  if (caps.currentExtent.width != UINT32_MAX) {
+    extent_ = caps.currentExtent;
+  } else {
+    extent_.width = std::clamp(wanted.width, caps.minImageExtent.width, caps.maxImageExtent.width);
+    extent_.height = std::clamp(wanted.height, caps.minImageExtent.height, caps.maxImageExtent.height);
+  }
+  extent_.width = std::max(extent_.width, 1u);
+  extent_.height = std::max(extent_.height, 1u);
+  min_images_ = std::max(2u, caps.minImageCount);
+  std::uint32_t count = caps.minImageCount + 1;
+  if (caps.maxImageCount > 0) count = std::min(count, caps.maxImageCount);
+  readable_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
+
+  VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
+  info.surface = surface_;
+  info.minImageCount = count;
+  info.imageFormat = format_.format;
+  info.imageColorSpace = format_.colorSpace;
+  info.imageExtent = extent_;
+  info.imageArrayLayers = 1;
+  info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                    (readable_ ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : 0);
+  info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.preTransform = caps.currentTransform;
+  info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
+                            ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
+                            : static_cast<VkCompositeAlphaFlagBitsKHR>(
+                                  caps.supportedCompositeAlpha & -caps.supportedCompositeAlpha);
+  info.presentMode = present_mode_;
+  info.clipped = VK_TRUE;
+  info.oldSwapchain = old;
+  VkSwapchainKHR swapchain = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateSwapchainKHR(device, &info, nullptr, &swapchain));
+  swapchain_ = UniqueSwapchain(device, swapchain);  // destroys the old one
+
+  std::uint32_t n = 0;
+  VK_CHECK(vkGetSwapchainImagesKHR(device, swapchain, &n, nullptr));
+  images_.resize(n);
+  VK_CHECK(vkGetSwapchainImagesKHR(device, swapchain, &n, images_.data()));
+
+  const bool msaa = samples_ != VK_SAMPLE_COUNT_1_BIT;
+  if (msaa)
+    color_msaa_ = Image(*context_,
+                        {extent_, format_.format,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT,
+                         samples_, VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_ASPECT_COLOR_BIT, false},
+                        "window colour (msaa)");
+  depth_ = Image(*context_,
+                 {extent_, depth_format_,
+                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT,
+                  samples_, VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_ASPECT_DEPTH_BIT, false},
+                 "window depth");
+  for (VkImage image : images_) {
+    VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    view_info.image = image;
+    view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view_info.format = format_.format;
+    view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &view));
+    views_.emplace_back(device, view);
+    std::vector<VkImageView> attachments;
+    attachments.push_back(msaa ? color_msaa_.view() : view);
+    attachments.push_back(depth_.view());
+    if (msaa) attachments.push_back(view);
+    VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fb_info.renderPass = render_pass_.get();
+    fb_info.attachmentCount = static_cast<std::uint32_t>(attachments.size());
+    fb_info.pAttachments = attachments.data();
+    fb_info.width = extent_.width;
+    fb_info.height = extent_.height;
+    fb_info.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateFramebuffer(device, &fb_info, nullptr, &fb));
+    framebuffers_.emplace_back(device, fb);
+  }
+}
+
+void Swapchain::begin(VkCommandBuffer cmd, std::uint32_t index,
+                      const std::array<float, 4>& background) const {
+  std::array<VkClearValue, 3> clear{};
+  clear[0].color = {{background[0], background[1], background[2], background[3]}};
+  clear[1].depthStencil = {1.0f, 0};
+  clear[2].color = clear[0].color;
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = render_pass_.get();
+  begin.framebuffer = framebuffers_.at(index).get();
+  begin.renderArea = {{0, 0}, extent_};
+  begin.clearValueCount = samples_ != VK_SAMPLE_COUNT_1_BIT ? 3u : 2u;
+  begin.pClearValues = clear.data();
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  const VkViewport viewport{0.f, 0.f, float(extent_.width), float(extent_.height), 0.f, 1.f};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  const VkRect2D scissor{{0, 0}, extent_};
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void Swapchain::record_copy(VkCommandBuffer cmd, std::uint32_t index, const Buffer& buffer) const {
+  const VkImage image = images_.at(index);
+  transition(cmd, image, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+             VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+             VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {extent_.width, extent_.height, 1};
+  vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
+  VkBufferMemoryBarrier to_host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+  to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  to_host.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  to_host.buffer = buffer.get();
+  to_host.size = VK_WHOLE_SIZE;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr,
+                       1, &to_host, 0, nullptr);
+  transition(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+             VK_ACCESS_TRANSFER_READ_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+             VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+}
+
+std::vector<std::uint8_t> Swapchain::pixels(const Buffer& buffer) const {
+  const std::size_t n = std::size_t(extent_.width) * extent_.height * 4;
+  std::vector<std::uint8_t> out(n);
+  std::memcpy(out.data(), buffer.mapped(), n);
+  const bool bgra = format_.format == VK_FORMAT_B8G8R8A8_UNORM || format_.format == VK_FORMAT_B8G8R8A8_SRGB;
+  for (std::size_t i = 0; i < n; i += 4) {
+    if (bgra) std::swap(out[i], out[i + 2]);
+    out[i + 3] = 255;  // the window is opaque whatever the alpha written
+  }
+  return out;
+}
+
+}  // namespace sketchsurf::vk

@@ -1,0 +1,61 @@
+#pragma once
+// The studio's two front ends: one renderer, two targets.
+
+#include <functional>
+#include <string>
+
+#include "engine/render/image.h"
+#include "engine/vk/context.h"
+
+#include "tools/sketchsurf-studio/studio.h"
+
+namespace sketchsurf::studio {
+
+/// The studio on an offscreen target: what --headless runs, and what studio_bench measures.
+class HeadlessStudio {
+ public:
+  /// Throws Error (the studio's), VulkanError.
+  HeadlessStudio(const StudioOptions& options, const Log& log);
+  ~HeadlessStudio();
+  HeadlessStudio(const HeadlessStudio&) = delete;
+  HeadlessStudio& operator=(const HeadlessStudio&) = delete;
+
+  Studio& studio() { return *studio_; }
+  const vk::Context& context() const { return *context_; }
+  VkSampleCountFlagBits samples() const;
+  /// One frame at time `now` (seconds): input, panel, update, draw, wait for it. Returns the
+  /// frame's wall time in seconds (also given to Studio::frame_finished()).
+  double frame(double now);
+  /// The last frame's picture.
+  render::RgbaImage picture() const;
+
+ private:
+  struct Parts;
+  std::unique_ptr<vk::Context> context_;
+  std::unique_ptr<Studio> studio_;
+  std::unique_ptr<Parts> parts_;
+  const Log& log_;
+  double previous_ = -1.0 / 60.0;
+};
+
+/// --headless: HeadlessStudio on a simulated clock (a replay spread over --frames frames, else
+/// 60 frames a second) until Studio::done(). Returns the exit code.
+int run_headless(const StudioOptions& options, const Log& log);
+
+/// A GLFW window with a Vulkan swapchain. Throws Error (Processing) with a message that suggests
+/// --headless or Xvfb when there is no display. Returns the exit code.
+int run_window(const StudioOptions& options, const Log& log);
+
+/// The message for a machine without a display.
+std::string no_display_message(const std::string& detail);
+
+/// 1, 2 or 4 as Vulkan's sample count.
+VkSampleCountFlagBits sample_count(int msaa);
+
+/// "N frames: median X ms, p95 Y ms, max Z ms".
+std::string summary(const FrameStats& stats);
+
+/// The Vulkan context options of the studio (device, validation, the log).
+vk::ContextOptions context_options(const StudioOptions& options, const Log& log);
+
+}  // namespace sketchsurf::studio
