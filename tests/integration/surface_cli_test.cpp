@@ -74,6 +74,36 @@ TEST(SurfaceCli, WritesTheMeshTheRegionsAndTheReport) {
   EXPECT_NE(typo.err.find("segment.epsilonn"), std::string::npos) << typo.err;
 }
 
+TEST(SurfaceCli, ACupIsOpenedWithANoteAndKeptClosedWithClosed) {
+  const fs::path dir = temp_dir("cup");
+  Sketch cup = testing::cup_sketch();
+  cup.params = {{"proxy.edge", 0.02}, {"segment.restarts", 2}};
+  write_sketch(cup, dir / "cup.json");
+  const std::string base = "surface " + (dir / "cup.json").string() + " -o " + (dir / "cup.ply").string() +
+                           " --report " + (dir / "report.json").string();
+  const auto report = [&] {
+    std::ifstream in(dir / "report.json");
+    return nlohmann::json::parse(in);
+  };
+  // Not quiet: the note names the rim stroke and the flag.
+  const int status = std::system((std::string(SKETCHSURF_CLI) + " " + base + " 2>" + (dir / "err.txt").string()).c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  std::ifstream err(dir / "err.txt");
+  const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("opened the surface at 1 rim(s)"), std::string::npos) << text;
+  EXPECT_NE(text.find("--closed"), std::string::npos) << text;
+  nlohmann::json open = report();
+  ASSERT_EQ(open["openings"].size(), 1u);
+  EXPECT_EQ(open["openings"][0]["id"], 1);
+  EXPECT_NEAR(open["openings"][0]["normal"][2].get<double>(), 1.0, 1e-3);
+  EXPECT_TRUE(open["extraction"]["open"].get<bool>());
+
+  const CliRun closed = run_cli(base + " --closed", dir);
+  ASSERT_EQ(closed.code, 0) << closed.err;
+  EXPECT_TRUE(report()["openings"].empty());
+  EXPECT_FALSE(report()["extraction"]["open"].get<bool>());
+}
+
 TEST(SurfaceCli, BadInputsGiveExitCode3Or4AndSayWhatToDo) {
   const fs::path dir = temp_dir("bad");
   const std::string out = " -o " + (dir / "out.ply").string();

@@ -1,5 +1,5 @@
 // sketchsurf batch SKETCH...|DIR... -o OUT_DIR [--jobs N] [--format ply|obj|glb|gltf] [--seed N]
-// [--threads N] [--keep-all-strokes]: `surface` on every sketch, each in a process of its own, so
+// [--threads N] [--keep-all-strokes] [--closed]: `surface` on every sketch, each in a process of its own, so
 // that a failure, a crash or an out-of-memory kill in one never stops the others; a summary table
 // at the end, exit 0 only when every sketch was surfaced.
 
@@ -46,6 +46,7 @@ struct BatchOptions {
   std::optional<std::uint64_t> seed;
   std::optional<unsigned> threads;
   bool keep_all_strokes = false;
+  bool closed = false;
 };
 
 /// One sketch to surface: where it is, and its outputs' path under OUT_DIR without extension
@@ -270,6 +271,7 @@ void run_batch(const BatchOptions& opt, const GlobalOptions& global) {
                                     "--report", base.string() + ".json", "--threads", std::to_string(threads)};
       if (opt.seed) args.insert(args.end(), {"--seed", std::to_string(*opt.seed)});
       if (opt.keep_all_strokes) args.push_back("--keep-all-strokes");
+      if (opt.closed) args.push_back("--closed");
       running[spawn(exe, args, base.string() + ".log")] = {next, Clock::now()};
       outcomes[next].ran = true;
       ++next;
@@ -356,6 +358,7 @@ void add_batch_command(CLI::App& app, const GlobalOptions& global) {
       ->check(whole_number(1, kMaxThreads));
   cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
                 "Surface every stroke, also those that seem to depict no surface");
+  cmd->add_flag("--closed", opt->closed, "Keep every surface closed: do not open it at rims found in the strokes");
   cmd->callback([opt, &global] { run_batch(*opt, global); });
 }
 
