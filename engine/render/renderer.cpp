@@ -36,6 +36,7 @@ struct PipelineDesc {
   VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
   bool depth_write = true;
   Blend blend = Blend::Opaque;
+  VkCullModeFlags cull = VK_CULL_MODE_NONE;  // open surfaces are seen from both sides
 };
 
 vk::UniquePipeline make_pipeline(const vk::Context& context, VkRenderPass pass,
@@ -63,7 +64,7 @@ vk::UniquePipeline make_pipeline(const vk::Context& context, VkRenderPass pass,
   viewport.scissorCount = 1;
   VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_NONE;  // open surfaces are seen from both sides
+  raster.cullMode = desc.cull;
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
@@ -141,7 +142,8 @@ GpuScene::GpuScene(const vk::Context& context, const SceneGeometry& geometry)
       stroke_indices_(geometry.stroke_index_count),
       edge_indices_(static_cast<std::uint32_t>(geometry.ribbon_indices.size()) -
                     geometry.stroke_index_count),
-      mesh_index_count_(static_cast<std::uint32_t>(geometry.mesh_indices.size())) {}
+      mesh_index_count_(static_cast<std::uint32_t>(geometry.mesh_indices.size())),
+      mesh_closed_(geometry.mesh_closed) {}
 
 Renderer::Renderer(const vk::Context& context, VkRenderPass render_pass,
                    VkSampleCountFlagBits samples)
@@ -160,6 +162,8 @@ Renderer::Renderer(const vk::Context& context, VkRenderPass render_pass,
                           {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(MeshVertex, normal)},
                           {2, 0, VK_FORMAT_R8G8B8A8_UNORM, offsetof(MeshVertex, color)}}};
   mesh_ = make_pipeline(context, render_pass, samples, layout, mesh_desc);
+  mesh_desc.cull = VK_CULL_MODE_BACK_BIT;
+  mesh_culled_ = make_pipeline(context, render_pass, samples, layout, mesh_desc);
 
   PipelineDesc ribbon_desc{ribbon_vert_spv, ribbon_frag_spv, sizeof(RibbonVertex),
                            {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(RibbonVertex, position)},
@@ -198,7 +202,8 @@ void Renderer::record(VkCommandBuffer cmd, const GpuScene& scene, const Camera& 
   };
   const VkDeviceSize zero = 0;
   if (options.mesh && scene.mesh_index_count_ > 0) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mesh_.get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      scene.mesh_closed_ ? mesh_culled_.get() : mesh_.get());
     push(1.0f, 0.0f);
     const VkBuffer vb = scene.mesh_vertices_.get();
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);

@@ -39,6 +39,7 @@ class GpuScene {
   BoundingBox bounds_;
   vk::Buffer ribbon_vertices_, ribbon_indices_, mesh_vertices_, mesh_indices_;
   std::uint32_t stroke_indices_ = 0, edge_indices_ = 0, mesh_index_count_ = 0;
+  bool mesh_closed_ = false;
 };
 
 /// Pipelines for meshes and ribbons, built for one render pass and sample count.
@@ -48,15 +49,16 @@ class Renderer {
   Renderer(const vk::Context& context, VkRenderPass render_pass, VkSampleCountFlagBits samples);
 
   /// Records the draws of `scene` as seen by `camera` into the render pass currently begun on
-  /// `cmd` (viewport and scissor set by the caller). Order: mesh, outlines, hidden strokes
-  /// (depth test GREATER, faint, no depth write), visible strokes.
+  /// `cmd` (viewport and scissor set by the caller). Order: mesh (back faces culled when it is
+  /// closed and outward: the same picture, half the triangles for a CPU rasteriser), outlines,
+  /// hidden strokes (depth test GREATER, faint, no depth write), visible strokes.
   void record(VkCommandBuffer cmd, const GpuScene& scene, const Camera& camera, double aspect,
               const DrawOptions& options) const;
 
  private:
   const vk::Context* context_;
   vk::UniquePipelineLayout layout_;
-  vk::UniquePipeline mesh_, ribbon_, ribbon_hidden_;
+  vk::UniquePipeline mesh_, mesh_culled_, ribbon_, ribbon_hidden_;
 };
 
 }  // namespace sketchsurf::render

@@ -342,7 +342,26 @@ SceneGeometry build_scene(const Sketch& sketch, const TriMesh* mesh,
     scene.ribbon_points += kept.size();
   }
   scene.stroke_index_count = static_cast<std::uint32_t>(scene.ribbon_indices.size());
-  if (mesh) MeshBuilder(*mesh, attributes, options, scene, ribbons, float(diagonal)).build();
+  if (mesh) {
+    MeshBuilder(*mesh, attributes, options, scene, ribbons, float(diagonal)).build();
+    // Closed and outward: no boundary edge, positive signed volume (sum of p0 . (p1 x p2) / 6).
+    bool closed = mesh->n_faces() > 0;
+    for (auto e : mesh->edges())
+      if (mesh->is_boundary(e)) {
+        closed = false;
+        break;
+      }
+    double volume = 0.0;
+    if (closed)
+      for (auto f : mesh->faces()) {
+        std::array<Eigen::Vector3d, 3> p;
+        int k = 0;
+        for (auto v : mesh->fv_range(f))
+          if (k < 3) p[k++] = to_eigen(mesh->point(v)) - scene.origin;
+        volume += p[0].dot(p[1].cross(p[2])) / 6.0;
+      }
+    scene.mesh_closed = closed && volume > 0.0;
+  }
   return scene;
 }
 

@@ -49,6 +49,8 @@ struct SceneGeometry {
   std::size_t stroke_points = 0;                     ///< stroke points in the input (drawn strokes)
   std::size_t ribbon_points = 0;                     ///< of which kept after simplification
   std::size_t outlined_edges = 0;                    ///< crease, boundary and region-boundary segments
+  bool mesh_closed = false;  ///< the mesh is closed and oriented outward (positive volume): its
+                             ///< back faces are never seen, so the renderer culls them
 
   bool empty() const { return ribbon_indices.empty() && mesh_indices.empty(); }
 };

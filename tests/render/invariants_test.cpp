@@ -103,5 +103,24 @@ TEST(RenderInvariants, HiddenStrokesAreFaintAndOnlyBehindTheSurface) {
   EXPECT_GT(dimmed, 50u);
 }
 
+TEST(RenderInvariants, CullingAClosedMeshsBackFacesChangesNoPixel) {
+  // Closed and outward (an icosphere, a box, a torus): drawn with back faces culled, the
+  // picture of every view is the one drawn with them.
+  const TriMesh box = box_grid_mesh(3, {0.6, 0.4, 0.3});
+  const TriMesh sphere = icosphere(3, 0.5);
+  const TriMesh torus = torus_mesh(24, 12, 0.5, 0.2);
+  for (const TriMesh* mesh : {&box, &sphere, &torus}) {
+    auto culled = build_scene(torus_sketch(), mesh);
+    ASSERT_TRUE(culled.mesh_closed);
+    auto both = culled;
+    both.mesh_closed = false;
+    for (render::View view : {render::View::Iso, render::View::Top, render::View::Back}) {
+      const auto a = render_picture(culled, 96, 80, view);
+      const auto b = render_picture(both, 96, 80, view);
+      EXPECT_EQ(a.pixels, b.pixels);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sketchsurf::testing

@@ -128,6 +128,20 @@ TEST(Scene, CreasesOfABoxAreOutlined) {
   EXPECT_EQ(build_scene(Sketch{}, &torus, nullptr, off).outlined_edges, 0u);
 }
 
+TEST(Scene, ClosedOutwardMeshesAreMarkedForBackFaceCulling) {
+  const TriMesh sphere = icosphere(2, 1.0);
+  EXPECT_TRUE(build_scene(Sketch{}, &sphere).mesh_closed);
+  EXPECT_TRUE(build_scene(Sketch{}, nullptr).mesh_closed == false);
+  // Inward: the same faces, reversed.
+  Eigen::MatrixX3i F = face_matrix(sphere);
+  F.col(1).swap(F.col(2));
+  const TriMesh inward = mesh_from_matrices(vertex_matrix(sphere), F);
+  EXPECT_FALSE(build_scene(Sketch{}, &inward).mesh_closed);
+  // Open: one face fewer.
+  const TriMesh open = mesh_from_matrices(vertex_matrix(sphere), face_matrix(sphere).topRows(F.rows() - 1));
+  EXPECT_FALSE(build_scene(Sketch{}, &open).mesh_closed);
+}
+
 TEST(Scene, CreasesSplitNormals) {
   // A box of flat n x n grids: split at its 90-degree creases, every face keeps its own
   // vertices, 6 (n+1)^2 of them, with the face's normal exactly; smoothing everything instead

@@ -46,7 +46,7 @@ void expect_cube_edges(const Sketch& sketch) {
 TEST(StudioHeadless, CubeTrackReplayedGivesTheCubesEdgesWhateverTheFrameCount) {
   const auto dir = scratch_dir("studio_replay_");
   const std::string track = quoted(data_file("cube.track.json"));
-  const CliRun run = run_studio("--headless --replay " + track + " --frames 24 --size 640x480 --save " +
+  const CliRun run = run_studio("--headless --replay " + track + " --frames 24 --size 640x480 --msaa 4 --save " +
                                     quoted(dir / "a.json") + " --screenshot " + quoted(dir / "shot.png") +
                                     " --autosave " + quoted(dir / "autosave.json"),
                                 dir);

@@ -35,7 +35,7 @@ TEST(StudioWindow, CubeReplayPresentsItsFramesAndMatchesTheGolden) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run under xvfb-run (CTest does)";
   const auto dir = scratch_dir("studio_window_");
   const std::string common = "--replay " + quoted(data_file("cube.track.json")) +
-                             " --frames 24 --size 640x480 --no-autosave --validation";
+                             " --frames 24 --size 640x480 --msaa 4 --no-autosave --validation";
   const CliRun window = run_studio(common + " --no-vsync --screenshot " + quoted(dir / "window.png") +
                                        " --save " + quoted(dir / "window.json"),
                                    dir);

@@ -73,7 +73,8 @@ int main(int argc, char** argv) {
   app.add_option("--param", params, "Surfacing parameter NAME=VALUE (repeatable), e.g. segment.restarts=2");
   app.add_option("--autosave", o.autosave, "Autosave file (.json); default: one in the temporary directory");
   app.add_flag("--no-autosave", o.no_autosave, "Do not autosave");
-  app.add_option("--msaa", o.msaa, "Multisampling: 1, 2 or 4")->check(CLI::IsMember({1, 2, 4}))->capture_default_str();
+  app.add_option("--msaa", o.msaa, "Multisampling: 1, 2 or 4 (default: 4 on a GPU, 1 on lavapipe)")
+      ->check(CLI::IsMember({1, 2, 4}));
   app.add_option("--device", o.device, "Vulkan device whose name contains this");
   app.add_flag("--validation", o.validation, "Enable the Khronos validation layer and print its messages");
   bool no_vsync = false;

@@ -49,8 +49,9 @@ int run_window(const StudioOptions& options, const Log& log);
 /// The message for a machine without a display.
 std::string no_display_message(const std::string& detail);
 
-/// 1, 2 or 4 as Vulkan's sample count.
-VkSampleCountFlagBits sample_count(int msaa);
+/// --msaa as Vulkan's sample count: 1, 2 or 4; 0 chooses for the device: 4 on a GPU, 1 on the
+/// CPU (lavapipe's 4x MSAA costs it about 3x the frame time with the studio's scenes).
+VkSampleCountFlagBits sample_count(int msaa, const vk::Context& context);
 
 /// "N frames: median X ms, p95 Y ms, max Z ms".
 std::string summary(const FrameStats& stats);

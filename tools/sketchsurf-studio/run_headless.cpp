@@ -8,7 +8,8 @@
 
 namespace sketchsurf::studio {
 
-VkSampleCountFlagBits sample_count(int msaa) {
+VkSampleCountFlagBits sample_count(int msaa, const vk::Context& context) {
+  if (msaa == 0) msaa = context.software() ? 1 : 4;
   return msaa >= 4 ? VK_SAMPLE_COUNT_4_BIT : msaa >= 2 ? VK_SAMPLE_COUNT_2_BIT : VK_SAMPLE_COUNT_1_BIT;
 }
 
@@ -30,7 +31,7 @@ std::string summary(const FrameStats& s) {
 /// The offscreen target, the renderer and the panel, in that order of construction.
 struct HeadlessStudio::Parts {
   Parts(const vk::Context& context, const StudioOptions& o)
-      : target(context, {std::uint32_t(o.width), std::uint32_t(o.height)}, sample_count(o.msaa)),
+      : target(context, {std::uint32_t(o.width), std::uint32_t(o.height)}, sample_count(o.msaa, context)),
         renderer(context, target.render_pass(), target.samples()),
         ui(context, target.render_pass(), target.samples(), 2, nullptr) {}
   vk::OffscreenTarget target;

@@ -199,7 +199,7 @@ int run_window(const StudioOptions& options, const Log& log) {
   glfwGetFramebufferSize(ws.window, &fb_w, &fb_h);
   vk::Swapchain swapchain(context, surface.surface,
                           {std::uint32_t(std::max(fb_w, 1)), std::uint32_t(std::max(fb_h, 1))},
-                          options.vsync, sample_count(options.msaa));
+                          options.vsync, sample_count(options.msaa, context));
   const auto describe = [&] {
     return std::to_string(swapchain.extent().width) + "x" + std::to_string(swapchain.extent().height) +
            ", " + std::to_string(swapchain.image_count()) + " images";

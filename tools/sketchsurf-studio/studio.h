@@ -36,7 +36,7 @@ struct StudioOptions {
   bool headless = false;
   bool surface = false;                ///< surface once the replay is over; wait for it
   std::map<std::string, double> params;
-  int msaa = 4;
+  int msaa = 0;                        ///< 1, 2 or 4; 0: 4 on a GPU, 1 on the CPU (lavapipe)
   std::string device;
   bool validation = false;
   bool vsync = true;
