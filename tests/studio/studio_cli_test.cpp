@@ -248,7 +248,7 @@ TEST(StudioHeadless, KillMinus9MidReplayLeavesAnAutosaveWithEveryFinishedStroke)
   const auto dir = scratch_dir("studio_kill_");
   const auto autosave = dir / "autosave.json";
   StudioProcess studio({"--headless", "-v", "--replay", data_file("cube.track.json").string(), "--frames",
-                        "3000", "--size", "32x24", "--msaa", "1", "--autosave", autosave.string()},
+                        "10000", "--size", "32x24", "--msaa", "1", "--autosave", autosave.string()},
                        dir / "log.txt");
   ASSERT_TRUE(studio.wait_for("autosaved 3 strokes", 120.0)) << studio.log();
   EXPECT_EQ(studio.stop(SIGKILL), -SIGKILL);
