@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <sstream>
 
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/atomic_file.h"
@@ -391,15 +392,26 @@ PolygonSoup read_ply_soup(const std::filesystem::path& file, bool want_attribute
         if (p.list) {
           const double length = data.read(p.count_type);
           const std::size_t item = data.ascii() ? 2 : type_size(p.type);
+          // Integral (the header refuses float counts): int64 holds it, negative ones included.
           if (length < 0 || length > static_cast<double>(data.left() / item + 1))
             throw Error::input_at_byte(file, data.offset(),
                                        element.name + " " + std::to_string(r) + ": a list of " +
-                                           std::to_string(static_cast<std::uint64_t>(length)) +
-                                           " items runs past the end of the file");
+                                           std::to_string(static_cast<std::int64_t>(length)) +
+                                           (length < 0 ? " items is impossible"
+                                                       : " items runs past the end of the file"));
           const auto n = static_cast<std::size_t>(length);
           for (std::size_t i = 0; i < n; ++i) {
             const double value = data.read(p.type);
-            if (ki == face_list) soup.indices.push_back(static_cast<std::int64_t>(value));
+            if (ki != face_list) continue;
+            // Float index types are allowed, but only whole numbers that an index can hold.
+            if (!(std::abs(value) <= 0x1p53) || value != std::trunc(value)) {
+              std::ostringstream number;
+              number << value;
+              throw Error::input_at_byte(file, data.offset(),
+                                         element.name + " " + std::to_string(r) + ": " + number.str() +
+                                             " is not a vertex index");
+            }
+            soup.indices.push_back(static_cast<std::int64_t>(value));
           }
           if (ki == face_list) soup.end_polygon();
           continue;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 
 #include "tests/support/shapes.h"
@@ -67,6 +68,37 @@ TEST(MeshIo, ObjRoundTripKeepsPositionsFacesAndColours) {
   EXPECT_EQ(back.colors, attributes.colors);
   // The torus is closed: every edge has two faces after reading.
   for (auto e : read.edges()) EXPECT_FALSE(read.is_boundary(e));
+}
+
+TEST(MeshIo, NegativeListLengthsAndFloatIndicesOutOfRangeAreInputErrors) {
+  // Found by the .ply fuzzer (tools/fuzz): a negative int16 list length, and float vertex indices
+  // that no integer holds, were converted to integers regardless (undefined behaviour).
+  TempDir dir;
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\n";
+  std::string vertices;
+  for (const float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f})
+    vertices.append(reinterpret_cast<const char*>(&c), 4);
+  const std::int16_t negative = -30464;
+  testing::write_text(dir / "negative.ply",
+                      header + "property list int16 int vertex_indices\nend_header\n" + vertices +
+                          std::string(reinterpret_cast<const char*>(&negative), 2));
+  expect_error([&] { read_mesh(dir / "negative.ply"); }, ErrorKind::Input,
+               {"negative.ply", "face 0: a list of -30464 items is impossible"});
+  for (const float index : {std::nanf(""), 1e30f, -1e30f, 1.5f}) {
+    std::string face(1, '\3');
+    for (const float i : {0.f, 1.f, index}) face.append(reinterpret_cast<const char*>(&i), 4);
+    testing::write_text(dir / "float.ply",
+                        header + "property list uchar float vertex_indices\nend_header\n" + vertices + face);
+    expect_error([&] { read_mesh(dir / "float.ply"); }, ErrorKind::Input, {"float.ply", "is not a vertex index"});
+  }
+  // Whole float indices are indices.
+  std::string face(1, '\3');
+  for (const float i : {0.f, 1.f, 2.f}) face.append(reinterpret_cast<const char*>(&i), 4);
+  testing::write_text(dir / "float.ply",
+                      header + "property list uchar float vertex_indices\nend_header\n" + vertices + face);
+  EXPECT_EQ(read_mesh(dir / "float.ply").n_faces(), 1u);
 }
 
 TEST(MeshIo, AsciiPlyWithQuadsFloatColoursAndExtraElements) {
