@@ -8,6 +8,7 @@
 #include <limits>
 #include <algorithm>
 #include <numeric>
+#include <sstream>
 #include <vector>
 
 #include "surfacing/error.h"
@@ -17,6 +18,7 @@
 #include "surfacing/proxy/polygonize.h"
 #include "surfacing/proxy/remesh.h"
 #include "surfacing/proxy/sampling.h"
+#include "surfacing/sketch/io/sketch_io.h"
 
 namespace sketchsurf {
 
@@ -471,14 +473,45 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   return finish(std::move(mesh), frame, start, r, report);
 }
 
+std::string proxy_mesh_problem(const TriMesh& mesh, const Sketch& sketch) {
+  if (mesh.n_faces() == 0) return "has no triangles (points or lines only); give a surface mesh";
+  BoundingBox box;
+  for (const auto v : mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(mesh.point(v));
+    if (!p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      std::ostringstream what;
+      what << "has vertex " << v.idx() << " at (" << p.x() << ", " << p.y() << ", " << p.z()
+           << "): " << (p.allFinite() ? "a coordinate is beyond +-" : "not finite (NaN or Inf)");
+      if (p.allFinite()) what << kMaxCoordinate;
+      return what.str();
+    }
+    box.extend(p);
+  }
+  double area = 0.0;
+  for (const auto f : mesh.faces()) area += mesh.calc_face_area(f);
+  const double diagonal = box.diagonal();
+  // Relative to the squared diagonal: round-off leaves flat meshes a tiny area.
+  if (!(area > 1e-12 * diagonal * diagonal))
+    return "has no area: every triangle is degenerate (its vertices on a point or a line)";
+  const double strokes = sketch.bounding_box().diagonal();
+  const double scale = diagonal / strokes;
+  if (strokes > 0 && (scale > kMaxProxyScale || scale < kMinProxyScale)) {
+    std::ostringstream what;
+    what << "is " << (scale > 1 ? scale : 1 / scale) << " times " << (scale > 1 ? "larger" : "smaller")
+         << " than the strokes (bounding-box diagonal " << diagonal << " against " << strokes
+         << "; at most " << kMaxProxyScale << " times larger, " << 1 / kMinProxyScale
+         << " times smaller): is it in the sketch's units?";
+    return what.str();
+  }
+  return {};
+}
+
 TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const ProxyOptions& options,
                       const Progress& progress, ProxyReport* report) {
   std::string why;
   if (!options.valid(&why)) throw Error::usage(why);
-  if (user_mesh.n_faces() == 0) throw Error::processing("the proxy mesh has no triangles");
-  for (const auto v : user_mesh.vertices())
-    if (!to_eigen(user_mesh.point(v)).allFinite())
-      throw Error::processing("the proxy mesh has a vertex with NaN or Inf coordinates");
+  if (const std::string problem = proxy_mesh_problem(user_mesh, sketch); !problem.empty())
+    throw Error::processing("the proxy mesh " + problem);
   ProxyReport r;
   const auto start = Clock::now();
   const Frame frame = stroke_frame(sketch);

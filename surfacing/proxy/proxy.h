@@ -117,11 +117,25 @@ struct ProxyReport {
 TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Progress& progress = {},
                    ProxyReport* report = nullptr);
 
-/// A user proxy (any resolution, e.g. a low-poly model): checked (not empty, finite, median distance
-/// from the strokes at most max_proxy_distance), remeshed to 2^attract_levels times the target edge
+/// Largest ratio of a user proxy's bounding-box diagonal to the strokes': remeshing a mesh many
+/// times the sketch's size at the sketch's edge length takes memory without bound, and a proxy
+/// that large is far from the strokes anyway (often a mesh in other units).
+constexpr double kMaxProxyScale = 10.0;
+/// Smallest such ratio: a proxy that small cannot be near more than a speck of the strokes.
+constexpr double kMinProxyScale = 0.01;
+
+/// Why `mesh` cannot be a proxy of `sketch` (empty when it can): no triangle; a vertex that is
+/// not finite or has a coordinate beyond +-kMaxCoordinate; no area (every triangle degenerate,
+/// the vertices on a point or a line); a bounding box more than kMaxProxyScale or less than
+/// kMinProxyScale times the strokes'. Cheap (one pass over the mesh), meant before any work on
+/// a user's mesh; the caller names the file.
+std::string proxy_mesh_problem(const TriMesh& mesh, const Sketch& sketch);
+
+/// A user proxy (any resolution, e.g. a low-poly model): checked (proxy_mesh_problem(), median
+/// distance from the strokes at most max_proxy_distance), remeshed to 2^attract_levels times the target edge
 /// length, attracted to the strokes by a Least-Squares Mesh, then subdivided to the target edge.
-/// @throws Error (Usage) for invalid options; Error (Processing) for an empty or far-away mesh or
-///         a sketch without strokes; Error (Cancelled).
+/// @throws Error (Usage) for invalid options; Error (Processing) for a mesh that cannot be a proxy,
+///         a far-away mesh or a sketch without strokes; Error (Cancelled).
 TriMesh attract_proxy(const TriMesh& user_mesh, const Sketch& sketch, const ProxyOptions& options,
                       const Progress& progress = {}, ProxyReport* report = nullptr);
 

@@ -272,5 +272,35 @@ TEST(FileSafety, InputsThatAreNotSketchesExit3NamingTheFile) {
   EXPECT_FALSE(fs::exists(dir / "m.ply"));
 }
 
+TEST(FileSafety, ProxyMeshesThatCannotBeOneExit3NamingTheFile) {
+  TempDir dir;
+  write_quick_cube(dir / "c.json");
+  const TriMesh sphere = testing::icosphere(2, 0.7);
+  TriMesh big = sphere, far_vertex = sphere, flat = sphere;
+  for (const auto v : big.vertices()) big.set_point(v, big.point(v) * 1e6);  // millimetres?
+  far_vertex.set_point(TriMesh::VertexHandle(0), OpenMesh::Vec3d(1e300, 0, 0));
+  for (const auto v : flat.vertices()) flat.set_point(v, OpenMesh::Vec3d(flat.point(v)[0], 0, 0));
+  write_mesh(big, dir / "big.obj");
+  write_mesh(far_vertex, dir / "far.ply");
+  write_mesh(flat, dir / "flat.obj");
+  const std::string sketch = (dir / "c.json").string(), out = (dir / "m.ply").string();
+  for (const auto& [args, expected] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"surface", sketch, "--proxy", (dir / "big.obj").string(), "-o", out},
+            "big.obj: the mesh is 1.4e+06 times larger than the strokes"},
+           {{"surface", sketch, "--proxy", (dir / "far.ply").string(), "-o", out},
+            "far.ply: the mesh has vertex 0 at (1e+300, 0, 0)"},
+           {{"segment", sketch, "--proxy", (dir / "flat.obj").string(), "-o", out},
+            "flat.obj: the mesh has no area"},
+           {{"proxy", sketch, "--from", (dir / "big.obj").string(), "-o", out}, "big.obj: the mesh is"}}) {
+    SCOPED_TRACE(joined(args));
+    const auto start = std::chrono::steady_clock::now();
+    const CliResult r = run_cli(args);
+    EXPECT_EQ(r.code, 3) << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));  // refused, not worked on
+  }
+  EXPECT_FALSE(fs::exists(dir / "m.ply"));
+}
+
 }  // namespace
 }  // namespace sketchsurf

@@ -1,5 +1,6 @@
 // `sketchsurf review`: one contact sheet per result (3 x 2 pictures of the requested size) and an
-// index page with the checks; a result without its sketch is listed as failed (exit 4).
+// index page with the checks; a result without its sketch is listed as failed (exit 4). Its
+// outputs are checked before any work and written together, as every command's.
 
 #include <gtest/gtest.h>
 
@@ -47,6 +48,46 @@ TEST(ReviewCli, ContactSheetsAndIndex) {
   EXPECT_NE(html.str().find("cube.png"), std::string::npos);
   EXPECT_NE(html.str().find("orphan"), std::string::npos);
   EXPECT_NE(html.str().find("no sketch named orphan"), std::string::npos);
+}
+
+TEST(ReviewCli, OutputsAreCheckedBeforeAnyWorkAndNoneIsChangedOnRefusal) {
+  const fs::path dir = testing::scratch_dir("sketchsurf_review_cli_");
+  const TriMesh mesh = testing::rounded_box_mesh(2, Eigen::Vector3d(0.5, 0.5, 0.5), 0.05);
+  for (const char* folder : {"a", "b"}) {
+    fs::create_directories(dir / folder);
+    write_mesh(mesh, dir / folder / "cube.ply");
+    write_sketch(testing::cube_sketch(), dir / folder / "cube.json");
+  }
+  fs::create_directories(dir / "out");
+  {
+    std::ofstream(dir / "out" / "index.html") << "earlier review\n";
+  }
+  const std::string out = testing::quoted(dir / "out");
+  // Two results named cube: their contact sheets would be one file.
+  auto run = testing::run_cli("review " + testing::quoted(dir / "a" / "cube.ply") + " " +
+                                  testing::quoted(dir / "b" / "cube.ply") + " -o " + out,
+                              dir);
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("is also the output"), std::string::npos) << run.err;
+  // A contact sheet's name taken by a folder.
+  fs::create_directories(dir / "out" / "cube.png");
+  run = testing::run_cli("review " + testing::quoted(dir / "a") + " -o " + out, dir);
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("cube.png is a directory"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("review: [1/1]"), std::string::npos) << "refused only after rendering";
+  // Neither run changed the earlier index nor left a temporary file.
+  std::ifstream in(dir / "out" / "index.html");
+  std::stringstream html;
+  html << in.rdbuf();
+  EXPECT_EQ(html.str(), "earlier review\n");
+  for (const auto& entry : fs::directory_iterator(dir / "out"))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  // Once the folder is out of the way, the same run writes both.
+  fs::remove(dir / "out" / "cube.png");
+  run = testing::run_cli("review " + testing::quoted(dir / "a") + " -o " + out + " --tile 64", dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(render::read_png(dir / "out" / "cube.png").width, 3 * 64 + 2 * 4);
+  EXPECT_GT(fs::file_size(dir / "out" / "index.html"), 500u);
 }
 
 }  // namespace

@@ -80,7 +80,7 @@ void run_proxy(const ProxyCommandOptions& opt, const GlobalOptions& global) {
   TriMesh mesh;
   try {
     mesh = opt.from.empty() ? make_proxy(sketch, opt.proxy, progress, &report)
-                            : attract_proxy(read_mesh(opt.from), sketch, opt.proxy, progress, &report);
+                            : attract_proxy(read_proxy_mesh(opt.from, sketch), sketch, opt.proxy, progress, &report);
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::Processing) throw;
     throw Error::processing(opt.sketch + ": " + e.what());

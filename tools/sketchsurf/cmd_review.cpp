@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "engine/render/sheet.h"
 #include "surfacing/error.h"
@@ -12,6 +13,7 @@
 #include "surfacing/sketch/io/atomic_file.h"
 #include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
+#include "tools/sketchsurf/run_files.h"
 
 namespace sketchsurf::cli {
 
@@ -115,53 +117,70 @@ void run_review(const ReviewCommandOptions& opt, const GlobalOptions& global) {
   if (opt.sheet.tile < 64 || opt.sheet.tile > 2048)
     throw Error::usage("--tile: the picture size must be between 64 and 2048 pixels");
   const std::vector<fs::path> meshes = result_meshes(opt.inputs);
+  // Every output is known before any work: a contact sheet per result and the index. The
+  // folder is made first, so that RunFiles can check the outputs in it.
   std::error_code ec;
   fs::create_directories(opt.output, ec);
   if (ec || !fs::is_directory(opt.output))
     throw Error::usage("-o: cannot create the folder '" + opt.output + "' (" + ec.message() + ")");
+  RunFiles files;
+  std::vector<ReviewRow> rows(meshes.size());
+  std::vector<std::optional<fs::path>> sketch_files(meshes.size());
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const fs::path folder = opt.sketches.empty() ? meshes[i].parent_path() : fs::path(opt.sketches);
+    sketch_files[i] = find_sketch(meshes[i], folder);
+    files.input(meshes[i].string());
+    if (sketch_files[i]) files.input(sketch_files[i]->string());
+    rows[i].name = meshes[i].stem().string();
+    rows[i].picture = rows[i].name + ".png";
+  }
+  const fs::path index = fs::path(opt.output) / "index.html";
+  files.output("-o", index.string());
+  for (const ReviewRow& row : rows) files.output("-o", (fs::path(opt.output) / row.picture).string());
+
   vk::ContextOptions context_options;
   context_options.log = [&global](const std::string& text) {
     if (!global.quiet) std::cerr << "sketchsurf: " << text << "\n";
   };
   const vk::Context context(context_options);
 
-  std::vector<ReviewRow> rows;
   std::size_t failed = 0;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
+    if (cancel_requested()) break;  // commit() says so
     const fs::path& mesh_file = meshes[i];
-    ReviewRow row;
-    row.name = mesh_file.stem().string();
+    ReviewRow& row = rows[i];
     if (!global.quiet)
       std::cerr << "review: [" << i + 1 << "/" << meshes.size() << "] " << mesh_file.string() << "\n";
     try {
-      const fs::path folder = opt.sketches.empty() ? mesh_file.parent_path() : fs::path(opt.sketches);
-      const auto sketch_file = find_sketch(mesh_file, folder);
-      if (!sketch_file)
+      if (!sketch_files[i])
         throw Error::input(mesh_file, "no sketch named " + row.name + ".(json|curves|tilt|obj) in '" +
-                                          folder.string() + "' (set --sketches)");
-      row.sketch = sketch_file->string();
+                                          (opt.sketches.empty() ? mesh_file.parent_path().string()
+                                                                : opt.sketches) +
+                                          "' (set --sketches)");
+      row.sketch = sketch_files[i]->string();
       Warnings warnings;
-      const Sketch sketch = read_sketch(*sketch_file, &warnings);
+      const Sketch sketch = read_sketch(*sketch_files[i], &warnings);
       MeshAttributes attributes;
       const TriMesh mesh = read_mesh(mesh_file, &attributes);
       const bool open = std::any_of(sketch.strokes.begin(), sketch.strokes.end(),
                                     [](const Stroke& s) { return s.boundary; });
       row.checks = check_shape(mesh, attributes.labels, sketch, open);
-      row.picture = row.name + ".png";
-      render::write_png(render::contact_sheet(context, sketch, &mesh, attributes, opt.sheet),
-                        fs::path(opt.output) / row.picture);
+      const render::RgbaImage sheet = render::contact_sheet(context, sketch, &mesh, attributes, opt.sheet);
+      files.write((fs::path(opt.output) / row.picture).string(),
+                  [&](const fs::path& file) { render::write_png(sheet, file); });
     } catch (const Error& e) {
       if (e.kind() == ErrorKind::Cancelled) throw;
       row.error = e.what();
+      row.picture.clear();
       ++failed;
       if (!global.quiet) std::cerr << "review: " << e.what() << "\n";
     }
-    rows.push_back(std::move(row));
   }
-  write_index(fs::path(opt.output) / "index.html", rows);
+  files.write(index.string(), [&](const fs::path& file) { write_index(file, rows); });
+  files.commit();
   if (!global.quiet)
-    std::cerr << "review: " << rows.size() - failed << " contact sheets in " << opt.output
-              << "/index.html" << (failed ? ", " + std::to_string(failed) + " failed" : "") << "\n";
+    std::cerr << "review: " << rows.size() - failed << " contact sheets in " << index.string()
+              << (failed ? ", " + std::to_string(failed) + " failed" : "") << "\n";
   if (failed) throw Error::processing(std::to_string(failed) + " of " + std::to_string(rows.size()) +
                                       " results could not be reviewed (see index.html)");
 }

@@ -75,7 +75,7 @@ void run_segment(const SegmentCommandOptions& opt, const GlobalOptions& global) 
   if (!opt.report.empty()) files.output("--report", opt.report);
   Sketch sketch = read_clean_sketch(opt.sketch, global);
   if (sketch.strokes.empty()) throw Error::input(opt.sketch, "no stroke left to segment");
-  const TriMesh proxy = read_mesh(opt.proxy);
+  const TriMesh proxy = read_proxy_mesh(opt.proxy, sketch);
   if (global.verbose)
     std::cerr << "segment: epsilon " << opt.segment.epsilon << ", w_smooth " << opt.segment.w_smooth
               << ", w_simp " << opt.segment.w_simp << ", restarts " << opt.segment.restarts

@@ -192,11 +192,7 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
                          "; stroke ids are the file's, or 0, 1, 2... in file order");
   }
   std::optional<TriMesh> proxy;
-  if (!opt.proxy.empty()) {
-    proxy = read_mesh(opt.proxy);
-    if (proxy->n_faces() == 0)
-      throw Error::input(opt.proxy, "no triangles (points or lines only); give a surface mesh");
-  }
+  if (!opt.proxy.empty()) proxy = read_proxy_mesh(opt.proxy, sketch);
   if (global.verbose) {
     std::cerr << "surface: parameters";
     for (const auto& [k, v] : sketch.params) std::cerr << " " << k << "=" << v;

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "surfacing/mesh.h"
 #include "surfacing/progress.h"
 #include "surfacing/sketch/io/sketch_io.h"
 
@@ -41,6 +42,11 @@ ProgressCallback stderr_progress(const GlobalOptions& global);
 /// (check_extent), cleans it (NaN/Inf, duplicates, too-short strokes)
 /// and prints what cleaning removed, unless quiet.
 Sketch read_clean_sketch(const std::string& file, const GlobalOptions& global);
+/// Reads a user's proxy mesh (--proxy, --from) and refuses one that cannot be a proxy of `sketch`
+/// (proxy_mesh_problem(): not finite, beyond +-1e12, no area, far larger or smaller than the
+/// strokes) with an Error (Input) naming the file, before any work: such a mesh would otherwise
+/// spend minutes and gigabytes in remeshing, or fail later without a file named.
+TriMesh read_proxy_mesh(const std::string& file, const Sketch& sketch);
 /// Prints reader warnings to stderr as "FILE: warning: ...", unless quiet.
 void print_warnings(const GlobalOptions& global, const std::string& file, const Warnings& warnings);
 /// `text` with control bytes other than newline and tab written as \xNN: what a terminal is

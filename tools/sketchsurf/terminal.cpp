@@ -5,6 +5,8 @@
 #include <iostream>
 #include <memory>
 
+#include "surfacing/proxy/proxy.h"
+#include "surfacing/sketch/io/mesh_io.h"
 #include "tools/sketchsurf/commands.h"
 #include "tools/sketchsurf/run_files.h"
 
@@ -71,6 +73,13 @@ Sketch read_clean_sketch(const std::string& file, const GlobalOptions& global) {
   if (!global.quiet)
     for (const auto& m : cleaning.messages) std::cerr << file << ": cleaned: " << m << "\n";
   return sketch;
+}
+
+TriMesh read_proxy_mesh(const std::string& file, const Sketch& sketch) {
+  TriMesh mesh = read_mesh(file);
+  if (const std::string problem = proxy_mesh_problem(mesh, sketch); !problem.empty())
+    throw Error::input(file, "the mesh " + problem);
+  return mesh;
 }
 
 }  // namespace sketchsurf::cli

@@ -6,6 +6,8 @@
 
 #include <Eigen/SparseCholesky>
 
+#include <cmath>
+#include <functional>
 #include <random>
 
 #include "surfacing/error.h"
@@ -176,6 +178,68 @@ TEST(Attract, FarAwayProxyIsRefused) {
     EXPECT_NE(std::string(e.what()).find("far from the strokes"), std::string::npos);
   }
   EXPECT_THROW(attract_proxy(TriMesh(), sketch, {}), Error);
+}
+
+TEST(Attract, MeshesThatCannotBeAProxyAreRefusedBeforeAnyWork) {
+  const Sketch sketch = testing::sphere_sketch(0.5, 4);
+  const TriMesh sphere = testing::icosphere(2, 0.55);
+  EXPECT_EQ(proxy_mesh_problem(sphere, sketch), "");
+  // The same at any scale, when the sketch is scaled with it.
+  for (const double scale : {1e-3, 1e3}) {
+    Sketch scaled_sketch = sketch;
+    for (Stroke& stroke : scaled_sketch.strokes)
+      for (auto& p : stroke.points) p *= scale;
+    TriMesh scaled = sphere;
+    for (const auto v : scaled.vertices()) scaled.set_point(v, scaled.point(v) * scale);
+    EXPECT_EQ(proxy_mesh_problem(scaled, scaled_sketch), "") << scale;
+  }
+  auto problem = [&](const std::function<void(TriMesh&)>& edit) {
+    TriMesh mesh = sphere;
+    edit(mesh);
+    return proxy_mesh_problem(mesh, sketch);
+  };
+  auto scaled_by = [](double factor) {
+    return [factor](TriMesh& m) {
+      for (const auto v : m.vertices()) m.set_point(v, m.point(v) * factor);
+    };
+  };
+  // The sphere's box is 1.1 times the strokes'.
+  EXPECT_NE(problem(scaled_by(1e6)).find("is 1.1e+06 times larger than the strokes"), std::string::npos)
+      << problem(scaled_by(1e6));
+  EXPECT_NE(problem(scaled_by(11)).find("times larger"), std::string::npos);
+  EXPECT_EQ(problem(scaled_by(5)), "");  // rough proxies may well be larger than the strokes
+  EXPECT_NE(problem(scaled_by(1e-4)).find("times smaller than the strokes"), std::string::npos);
+  const std::string far_vertex =
+      problem([](TriMesh& m) { m.set_point(TriMesh::VertexHandle(7), OpenMesh::Vec3d(1e300, 0, 0)); });
+  EXPECT_NE(far_vertex.find("has vertex 7 at (1e+300, 0, 0): a coordinate is beyond +-1e+12"),
+            std::string::npos)
+      << far_vertex;
+  const std::string nan_vertex = problem([](TriMesh& m) {
+    m.set_point(TriMesh::VertexHandle(3), OpenMesh::Vec3d(0, std::nan(""), 0));
+  });
+  EXPECT_NE(nan_vertex.find("has vertex 3 at"), std::string::npos) << nan_vertex;
+  EXPECT_NE(nan_vertex.find("not finite"), std::string::npos) << nan_vertex;
+  const std::string point = problem([](TriMesh& m) {
+    for (const auto v : m.vertices()) m.set_point(v, OpenMesh::Vec3d(0.1, 0.2, 0.3));
+  });
+  EXPECT_NE(point.find("has no area"), std::string::npos) << point;
+  const std::string line = problem([](TriMesh& m) {
+    for (const auto v : m.vertices()) m.set_point(v, OpenMesh::Vec3d(m.point(v)[0], 0, 0));
+  });
+  EXPECT_NE(line.find("has no area"), std::string::npos) << line;
+  EXPECT_NE(proxy_mesh_problem(TriMesh(), sketch).find("no triangles"), std::string::npos);
+  // attract_proxy refuses a mesh a million times too large at once (remeshing it at the sketch's
+  // edge length would not end).
+  TriMesh huge = sphere;
+  scaled_by(1e6)(huge);
+  try {
+    attract_proxy(huge, sketch, {});
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Processing);
+    EXPECT_NE(std::string(e.what()).find("the proxy mesh is 1.1e+06 times larger"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
