@@ -7,8 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
+#include "surfacing/palette.h"
 #include "surfacing/sketch/io/mesh_io.h"
 #include "surfacing/sketch/io/sketch_io.h"
 #include "tests/support/shapes.h"
@@ -57,6 +59,24 @@ TEST(SurfaceCli, WritesTheMeshTheRegionsAndTheReport) {
   const TriMesh mesh = read_mesh(dir / "out.ply", &attributes);
   EXPECT_GT(mesh.n_faces(), 1000u);
   EXPECT_EQ(attributes.labels.size(), mesh.n_vertices());
+  // Region colours, and the creases per edge: they run along the cube's edges, where two of the
+  // three coordinates are at the box's sides.
+  ASSERT_EQ(attributes.colors.size(), mesh.n_vertices());
+  for (std::size_t v = 0; v < mesh.n_vertices(); ++v)
+    ASSERT_EQ(attributes.colors[v], region_color(attributes.labels[v]));
+  BoundingBox box;
+  for (const auto v : mesh.vertices()) box.extend(to_eigen(mesh.point(v)));
+  ASSERT_GT(attributes.sharp_edges.size(), 12u);
+  std::size_t on_cube_edges = 0;
+  for (const auto& [a, b] : attributes.sharp_edges) {
+    const Eigen::Vector3d mid = 0.5 * (to_eigen(mesh.point(TriMesh::VertexHandle(a))) +
+                                       to_eigen(mesh.point(TriMesh::VertexHandle(b))));
+    int sides = 0;
+    for (int c = 0; c < 3; ++c)
+      sides += std::min(mid[c] - box.min[c], box.max[c] - mid[c]) < 0.03 * box.diagonal();
+    on_cube_edges += sides >= 2;
+  }
+  EXPECT_GT(on_cube_edges, attributes.sharp_edges.size() * 9 / 10);
   std::ifstream in(dir / "report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
   EXPECT_EQ(report["regions"], 6);
@@ -72,6 +92,42 @@ TEST(SurfaceCli, WritesTheMeshTheRegionsAndTheReport) {
   const CliRun typo = run_cli("surface " + (dir / "typo.json").string() + " -o " + (dir / "t.ply").string(), dir);
   EXPECT_EQ(typo.code, 3);
   EXPECT_NE(typo.err.find("segment.epsilonn"), std::string::npos) << typo.err;
+}
+
+TEST(SurfaceCli, ObjOutputHasNormalsAndAGroupPerRegion) {
+  const fs::path dir = temp_dir("obj");
+  Sketch cube = testing::cube_sketch();
+  cube.params = {{"proxy.edge", 0.03}, {"segment.restarts", 2}};
+  write_sketch(cube, dir / "cube.json");
+  write_mesh(testing::rounded_box_mesh(3, {0.5, 0.5, 0.5}, 0.1), dir / "proxy.ply");
+  const std::string args = "surface " + (dir / "cube.json").string() + " --proxy " + (dir / "proxy.ply").string();
+  // Strokes go into glTF only: asked for with another output, refused before any work.
+  const CliRun refused = run_cli(args + " -o " + (dir / "out.ply").string() + " --with-strokes", dir);
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("--with-strokes: only a .glb or .gltf output"), std::string::npos) << refused.err;
+  const CliRun r = run_cli(args + " -o " + (dir / "out.obj").string() + " --seed 7", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  MeshAttributes attributes;
+  const TriMesh mesh = read_mesh(dir / "out.obj", &attributes);
+  EXPECT_EQ(attributes.colors.size(), mesh.n_vertices());  // region colours as `v x y z r g b`
+  std::ifstream in(dir / "out.obj");
+  std::size_t normals = 0, faces = 0, corners_with_normals = 0;
+  std::set<std::string> groups;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("vn ", 0) == 0) ++normals;
+    if (line.rfind("g ", 0) == 0) {
+      EXPECT_TRUE(groups.insert(line).second) << "group twice: " << line;
+    }
+    if (line.rfind("f ", 0) == 0) {
+      ++faces;
+      for (std::size_t at = line.find("//"); at != std::string::npos; at = line.find("//", at + 2))
+        ++corners_with_normals;
+    }
+  }
+  EXPECT_EQ(faces, mesh.n_faces());
+  EXPECT_EQ(corners_with_normals, 3 * faces);
+  EXPECT_GT(normals, mesh.n_vertices());  // split along the creases
+  EXPECT_EQ(groups.size(), 6u);           // the cube's six sides
 }
 
 TEST(SurfaceCli, ACupIsOpenedWithANoteAndKeptClosedWithClosed) {

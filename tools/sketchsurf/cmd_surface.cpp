@@ -3,6 +3,8 @@
 // the piecewise-smooth surface of a sketch (the whole method, paper §4-5).
 
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cmath>
 #include <iostream>
@@ -11,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "surfacing/palette.h"
 #include "surfacing/pipeline.h"
 #include "surfacing/sketch/io/atomic_file.h"
 #include "surfacing/sketch/io/mesh_io.h"
@@ -34,6 +37,7 @@ struct SurfaceCommandOptions {
   std::optional<unsigned> threads;
   bool keep_all_strokes = false;
   bool closed = false;
+  bool with_strokes = false;
 };
 
 /// "x", "y", "z" (the plane through the origin with that normal) or "a,b,c,d" (a x + b y + c z +
@@ -163,6 +167,11 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
   files.input(opt.sketch);
   files.input(opt.proxy);
   files.output("-o", opt.output, {".obj", ".ply", ".glb", ".gltf"});
+  std::string extension = std::filesystem::path(opt.output).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (opt.with_strokes && extension != ".glb" && extension != ".gltf")
+    throw Error::usage("--with-strokes: only a .glb or .gltf output (-o) carries the strokes");
   if (!opt.regions.empty()) files.output("--regions", opt.regions, {".obj", ".ply", ".glb", ".gltf"});
   if (!opt.report.empty()) files.output("--report", opt.report);
   Warnings warnings;
@@ -213,6 +222,9 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
   MeshAttributes attributes;
   attributes.labels = result.labels;
   attributes.sharp = result.sharp;
+  for (int label : result.labels) attributes.colors.push_back(region_color(label));
+  if (opt.with_strokes)
+    for (const Stroke& stroke : sketch.strokes) attributes.strokes.push_back(stroke.points);
   files.write(opt.output, [&](const auto& file) { write_mesh(result.mesh, file, attributes); });
   if (!opt.regions.empty()) {
     MeshAttributes regions;
@@ -290,6 +302,8 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--closed", opt->closed,
                 "Keep the surface closed: do not open it at rims found in the strokes (a closed loop "
                 "with nothing drawn across or beyond it, such as a cup's top)");
+  cmd->add_flag("--with-strokes", opt->with_strokes,
+                "In a .glb/.gltf output, also the strokes, as a second mesh of line strips");
   cmd->callback([opt, &global] { run_surface(*opt, global); });
 }
 

@@ -14,73 +14,11 @@
 #include "surfacing/error.h"
 #include "surfacing/palette.h"
 #include "surfacing/sketch/io/atomic_file.h"
+#include "surfacing/sketch/io/split_normals.h"
 
 namespace sketchsurf::io_detail {
 
 namespace {
-
-/// Union-find over the face corners: the corners of one vertex that share a smooth side.
-class CornerSets {
- public:
-  explicit CornerSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t c) {
-    while (parent_[c] != c) c = parent_[c] = parent_[parent_[c]];
-    return c;
-  }
-  /// The smaller root wins, so the sets do not depend on the order of the unions.
-  void join(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
-
-/// The triangles of the mesh with their vertices, unit normals and corner angles.
-struct Triangles {
-  std::vector<int> slot;                      // per mesh face index: its triangle, -1 if none
-  std::vector<std::array<int, 3>> vertices;   // mesh vertex indices
-  std::vector<Eigen::Vector3d> normals;       // zero for a degenerate triangle
-  std::vector<std::array<double, 3>> angles;  // at each corner (rad)
-};
-
-Triangles triangles(const TriMesh& mesh) {
-  Triangles t;
-  t.slot.assign(mesh.n_faces(), -1);
-  for (auto f : mesh.faces()) {
-    std::array<int, 3> v{};
-    int k = 0;
-    for (auto u : f.vertices()) {
-      if (k == 3) throw Error::processing("glTF output: a face with more than three vertices");
-      v[k++] = u.idx();
-    }
-    if (k != 3) throw Error::processing("glTF output: a face with fewer than three vertices");
-    std::array<Eigen::Vector3d, 3> p;
-    for (int i = 0; i < 3; ++i) p[i] = to_eigen(mesh.point(TriMesh::VertexHandle(v[i])));
-    Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
-    n = n.norm() > 0.0 && n.allFinite() ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
-    std::array<double, 3> angle{};
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d a = p[(i + 1) % 3] - p[i], b = p[(i + 2) % 3] - p[i];
-      const double value = std::atan2(a.cross(b).norm(), a.dot(b));
-      angle[i] = std::isfinite(value) ? value : 0.0;
-    }
-    t.slot[f.idx()] = static_cast<int>(t.vertices.size());
-    t.vertices.push_back(v);
-    t.normals.push_back(n);
-    t.angles.push_back(angle);
-  }
-  return t;
-}
-
-/// Corner index (3 triangle + k) of mesh vertex v in triangle i.
-std::size_t corner(const Triangles& t, int i, int v) {
-  for (int k = 0; k < 3; ++k)
-    if (t.vertices[i][k] == v) return 3 * static_cast<std::size_t>(i) + k;
-  throw Error::processing("glTF output: inconsistent mesh connectivity");
-}
 
 /// Appends `values` to the buffer as a new buffer view (4-byte aligned) and returns its index.
 template <typename T>
@@ -119,55 +57,66 @@ int add_float_accessor(tinygltf::Model& model, const std::vector<float>& values,
   return static_cast<int>(model.accessors.size()) - 1;
 }
 
+/// The strokes as a second mesh, "strokes": one LINE_STRIP primitive per polyline of at least two
+/// points (all points in one buffer view, an accessor each), drawn in a dark grey. Returns the
+/// mesh index, or -1 when no polyline has two points.
+int add_strokes(tinygltf::Model& model, const std::vector<std::vector<Eigen::Vector3d>>& strokes) {
+  std::vector<float> points;
+  for (const auto& stroke : strokes)
+    if (stroke.size() >= 2)
+      for (const Eigen::Vector3d& p : stroke)
+        for (int c = 0; c < 3; ++c) points.push_back(static_cast<float>(p[c]));
+  if (points.empty()) return -1;
+  const int view = add_view(model, points, TINYGLTF_TARGET_ARRAY_BUFFER);
+  model.bufferViews[view].byteStride = 3 * sizeof(float);  // required: the accessors share the view
+  tinygltf::Material material;
+  material.name = "strokes";
+  material.pbrMetallicRoughness.baseColorFactor = {0.1, 0.1, 0.1, 1.0};
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  model.materials.push_back(material);
+  tinygltf::Mesh mesh;
+  mesh.name = "strokes";
+  std::size_t first = 0;  // first point of the stroke in `points`
+  for (const auto& stroke : strokes) {
+    if (stroke.size() < 2) continue;
+    tinygltf::Accessor accessor;
+    accessor.bufferView = view;
+    accessor.byteOffset = first * 3 * sizeof(float);
+    accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    accessor.type = TINYGLTF_TYPE_VEC3;
+    accessor.count = stroke.size();
+    accessor.minValues.assign(3, std::numeric_limits<double>::infinity());
+    accessor.maxValues.assign(3, -std::numeric_limits<double>::infinity());
+    for (std::size_t i = first; i < first + stroke.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        accessor.minValues[c] = std::min<double>(accessor.minValues[c], points[3 * i + c]);
+        accessor.maxValues[c] = std::max<double>(accessor.maxValues[c], points[3 * i + c]);
+      }
+    model.accessors.push_back(accessor);
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_LINE_STRIP;
+    primitive.attributes["POSITION"] = static_cast<int>(model.accessors.size()) - 1;
+    primitive.material = static_cast<int>(model.materials.size()) - 1;
+    mesh.primitives.push_back(primitive);
+    first += stroke.size();
+  }
+  model.meshes.push_back(mesh);
+  return static_cast<int>(model.meshes.size()) - 1;
+}
+
 }  // namespace
 
 void write_gltf_mesh(const TriMesh& mesh, const std::filesystem::path& file, const MeshAttributes& a,
                      bool binary) {
-  const Triangles t = triangles(mesh);
-  const std::size_t corners = 3 * t.vertices.size();
-
-  // The corners of a vertex on the two sides of an edge share an output vertex unless the edge
-  // is a crease (or a border: then they are not on two sides of it).
-  const double crease = std::cos(kGltfCreaseAngle * M_PI / 180.0);
-  const double sharp_crease = std::cos(kGltfSharpCreaseAngle * M_PI / 180.0);
-  CornerSets sets(corners);
-  for (auto e : mesh.edges()) {
-    if (e.is_boundary()) continue;
-    const int f0 = t.slot[e.h0().face().idx()], f1 = t.slot[e.h1().face().idx()];
-    if (f0 < 0 || f1 < 0) continue;
-    const int u = e.v0().idx(), v = e.v1().idx();
-    const bool sharp = !a.sharp.empty() && a.sharp[u] && a.sharp[v];
-    const double cosine = t.normals[f0].dot(t.normals[f1]);
-    const bool degenerate = t.normals[f0].isZero(0.0) || t.normals[f1].isZero(0.0);
-    if (!degenerate && cosine < (sharp ? sharp_crease : crease)) continue;
-    for (int w : {u, v}) sets.join(corner(t, f0, w), corner(t, f1, w));
-  }
-
-  // One output vertex per set, numbered in corner order.
-  std::vector<std::uint32_t> index(corners);
-  std::vector<std::size_t> output(corners, std::numeric_limits<std::size_t>::max());
-  std::vector<int> source;                // mesh vertex of each output vertex
-  std::vector<Eigen::Vector3d> normal;    // angle-weighted sums
-  std::vector<Eigen::Vector3d> fallback;  // a face normal, for a sum that cancels out
-  for (std::size_t c = 0; c < corners; ++c) {
-    const std::size_t root = sets.find(c);
-    if (output[root] == std::numeric_limits<std::size_t>::max()) {
-      output[root] = source.size();
-      source.push_back(t.vertices[c / 3][c % 3]);
-      normal.emplace_back(Eigen::Vector3d::Zero());
-      fallback.emplace_back(Eigen::Vector3d::UnitZ());
-    }
-    const std::size_t o = output[root];
-    index[c] = static_cast<std::uint32_t>(o);
-    normal[o] += t.angles[c / 3][c % 3] * t.normals[c / 3];
-    if (!t.normals[c / 3].isZero(0.0)) fallback[o] = t.normals[c / 3];
-  }
+  const SplitNormals split = split_normals(mesh, a.sharp);
+  const std::vector<std::uint32_t>& index = split.corner_vertex;
+  const std::size_t corners = index.size();
 
   std::vector<float> positions, normals, colors, labels;
-  for (std::size_t o = 0; o < source.size(); ++o) {
-    const int v = source[o];
+  for (std::size_t o = 0; o < split.source.size(); ++o) {
+    const int v = split.source[o];
     const auto& p = mesh.point(TriMesh::VertexHandle(v));
-    const Eigen::Vector3d n = normal[o].norm() > 0.0 ? Eigen::Vector3d(normal[o].normalized()) : fallback[o];
+    const Eigen::Vector3d& n = split.normals[o];
     for (int c = 0; c < 3; ++c) {
       positions.push_back(static_cast<float>(p[c]));
       normals.push_back(static_cast<float>(n[c]));
@@ -212,13 +161,19 @@ void write_gltf_mesh(const TriMesh& mesh, const std::filesystem::path& file, con
     gltf_mesh.primitives.push_back(primitive);
     model.meshes.push_back(gltf_mesh);
     node.mesh = 0;
-  } else {
-    model.buffers.clear();
   }
   node.name = "surface";
   model.nodes.push_back(node);
   tinygltf::Scene scene;
   scene.nodes.push_back(0);
+  if (const int strokes = add_strokes(model, a.strokes); strokes >= 0) {
+    tinygltf::Node strokes_node;
+    strokes_node.name = "strokes";
+    strokes_node.mesh = strokes;
+    model.nodes.push_back(strokes_node);
+    scene.nodes.push_back(1);
+  }
+  if (model.buffers[0].data.empty()) model.buffers.clear();
   model.scenes.push_back(scene);
   model.defaultScene = 0;
 

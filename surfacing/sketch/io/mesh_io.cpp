@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/atomic_file.h"
 #include "surfacing/sketch/io/gltf_io.h"
+#include "surfacing/sketch/io/split_normals.h"
 #include "surfacing/sketch/io/text_io.h"
 
 namespace sketchsurf {
@@ -352,8 +354,11 @@ PolygonSoup read_ply_soup(const std::filesystem::path& file, bool want_attribute
                                      std::to_string(data.left()) + " bytes of data remain");
     const bool is_vertex = element.name == "vertex";
     const bool is_face = element.name == "face";
+    const bool is_edge = element.name == "edge" && want_attributes;
     // Which property feeds what (-1 = none).
     int xyz[3] = {-1, -1, -1}, rgb[3] = {-1, -1, -1}, label = -1, sharp = -1, face_list = -1;
+    int ends[2] = {-1, -1};
+    double edge[3] = {0, 0, 0};  // vertex1, vertex2, sharp of the edge being read
     for (std::size_t k = 0; k < element.properties.size(); ++k) {
       const auto& p = element.properties[k];
       const int ki = static_cast<int>(k);
@@ -369,7 +374,13 @@ PolygonSoup read_ply_soup(const std::filesystem::path& file, bool want_attribute
       }
       if (is_face && p.list && (p.name == "vertex_indices" || p.name == "vertex_index"))
         face_list = ki;
+      if (is_edge && !p.list) {
+        if (p.name == "vertex1") ends[0] = ki;
+        if (p.name == "vertex2") ends[1] = ki;
+        if (p.name == "sharp") sharp = ki;
+      }
     }
+    const bool sharp_edges = is_edge && ends[0] >= 0 && ends[1] >= 0 && sharp >= 0;
     if (is_vertex) {
       if (have_vertices) throw Error::input(file, "more than one vertex element");
       if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)
@@ -417,6 +428,11 @@ PolygonSoup read_ply_soup(const std::filesystem::path& file, bool want_attribute
           continue;
         }
         const double value = data.read(p.type);
+        if (sharp_edges) {
+          for (int c = 0; c < 2; ++c)
+            if (ki == ends[c]) edge[c] = value;
+          if (ki == sharp) edge[2] = value;
+        }
         if (!is_vertex) continue;
         for (int c = 0; c < 3; ++c)
           if (ki == xyz[c]) soup.points[r][c] = value;
@@ -434,6 +450,14 @@ PolygonSoup read_ply_soup(const std::filesystem::path& file, bool want_attribute
           soup.attributes.labels[r] = static_cast<int>(value);
         }
         if (ki == sharp && want_attributes) soup.attributes.sharp[r] = value != 0.0;
+      }
+      if (sharp_edges && edge[2] != 0.0) {
+        for (int c = 0; c < 2; ++c)
+          if (!(edge[c] >= 0 && edge[c] < static_cast<double>(soup.points.size())))
+            throw Error::input(file, "edge " + std::to_string(r) + ": vertex index " +
+                                         std::to_string(edge[c]) + " is out of range (" +
+                                         std::to_string(soup.points.size()) + " vertices)");
+        soup.attributes.sharp_edges.push_back({static_cast<int>(edge[0]), static_cast<int>(edge[1])});
       }
     }
   }
@@ -471,12 +495,38 @@ std::vector<int> live_vertex_indices(const TriMesh& mesh, std::size_t& count) {
   return index;
 }
 
+/// The region of each live face (mesh order): the label two or three of its vertices share,
+/// else the smallest of the three.
+std::vector<int> face_labels(const TriMesh& mesh, const std::vector<int>& labels) {
+  std::vector<int> out;
+  for (auto f : mesh.faces()) {
+    std::array<int, 3> l{};
+    int k = 0;
+    for (auto v : f.vertices()) l[k++ % 3] = labels[v.idx()];
+    out.push_back(l[1] == l[2] ? l[1] : l[0] == l[1] || l[0] == l[2] ? l[0] : std::min({l[0], l[1], l[2]}));
+  }
+  return out;
+}
+
 void write_obj_mesh(const TriMesh& mesh, const std::filesystem::path& file, const MeshAttributes& a) {
   std::size_t count = 0;
   const std::vector<int> index = live_vertex_indices(mesh, count);
+  const io_detail::SplitNormals normals = io_detail::split_normals(mesh, a.sharp);
+  // Faces in region order, one group per region; without labels one group in mesh order.
+  std::vector<std::size_t> order(normals.corner_vertex.size() / 3);
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<int> region;
+  if (!a.labels.empty()) {
+    region = face_labels(mesh, a.labels);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return region[x] < region[y]; });
+  }
+  std::vector<int> corners;  // mesh vertex of each corner, faces in mesh order
+  for (auto f : mesh.faces())
+    for (auto v : f.vertices()) corners.push_back(v.idx());
   write_atomically(file, [&](std::ostream& out) {
     std::string text = "# sketchsurf mesh: " + std::to_string(count) + " vertices, " +
-                       std::to_string(mesh.n_faces()) + " faces\n";
+                       std::to_string(order.size()) + " faces; normals split along creases" +
+                       (region.empty() ? "" : ", one group per region") + "\n";
     for (auto v : mesh.vertices()) {
       append_vec(text, "v", mesh.point(v));
       if (!a.colors.empty())
@@ -486,9 +536,18 @@ void write_obj_mesh(const TriMesh& mesh, const std::filesystem::path& file, cons
         }
       text += '\n';
     }
-    for (auto f : mesh.faces()) {
+    for (const Eigen::Vector3d& n : normals.normals) {
+      append_vec(text, "vn", OpenMesh::Vec3d(n.x(), n.y(), n.z()));
+      text += '\n';
+    }
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const std::size_t f = order[i];
+      if (!region.empty() && (i == 0 || region[f] != region[order[i - 1]]))
+        text += "g region_" + std::to_string(region[f]) + "\n";
       text += 'f';
-      for (auto v : f.vertices()) text += ' ' + std::to_string(index[v.idx()] + 1);
+      for (std::size_t c = 3 * f; c < 3 * f + 3; ++c)
+        text += ' ' + std::to_string(index[corners[c]] + 1) + "//" +
+                std::to_string(normals.corner_vertex[c] + 1);
       text += '\n';
       if (text.size() > (1u << 20)) {
         out.write(text.data(), static_cast<std::streamsize>(text.size()));
@@ -511,7 +570,18 @@ void write_ply_mesh(const TriMesh& mesh, const std::filesystem::path& file, cons
   if (!a.colors.empty()) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   if (!a.sharp.empty()) header += "property uchar sharp\n";
   header += "element face " + std::to_string(faces) + "\n";
-  header += "property list uchar int vertex_indices\nend_header\n";
+  header += "property list uchar int vertex_indices\n";
+  // With sharp flags, the creases per edge too: a vertex flag cannot say which of its edges is
+  // sharp.
+  std::vector<std::uint8_t> crease;
+  if (!a.sharp.empty()) {
+    crease = io_detail::crease_edges(mesh, a.sharp);
+    std::size_t edges = 0;
+    for ([[maybe_unused]] auto e : mesh.edges()) ++edges;
+    header += "element edge " + std::to_string(edges) +
+              "\nproperty int vertex1\nproperty int vertex2\nproperty uchar sharp\n";
+  }
+  header += "end_header\n";
   write_atomically(file, [&](std::ostream& out) {
     std::string bytes = header;
     for (auto v : mesh.vertices()) {
@@ -529,6 +599,12 @@ void write_ply_mesh(const TriMesh& mesh, const std::filesystem::path& file, cons
         bytes.clear();
       }
     }
+    if (!crease.empty())
+      for (auto e : mesh.edges()) {
+        put<std::int32_t>(bytes, index[e.v0().idx()]);
+        put<std::int32_t>(bytes, index[e.v1().idx()]);
+        put<std::uint8_t>(bytes, crease[e.idx()]);
+      }
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   });
 }

@@ -12,26 +12,15 @@
 
 #include "surfacing/palette.h"
 #include "surfacing/sketch/io/mesh_io.h"
+#include "surfacing/sketch/io/sketch_io.h"
 #include "tests/support/shapes.h"
 #include "tests/unit/sketch/io_test_support.h"
 
 namespace sketchsurf {
 namespace {
 
+using testing::cube_mesh;
 using testing::TempDir;
-
-/// A unit cube of 12 triangles, every edge of its squares a 90-degree crease.
-TriMesh cube_mesh() {
-  TriMesh mesh;
-  std::vector<TriMesh::VertexHandle> v;
-  for (int i = 0; i < 8; ++i) v.push_back(mesh.add_vertex(TriMesh::Point(i & 1, (i >> 1) & 1, (i >> 2) & 1)));
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : quads) {
-    mesh.add_face(v[q[0]], v[q[1]], v[q[2]]);
-    mesh.add_face(v[q[0]], v[q[2]], v[q[3]]);
-  }
-  return mesh;
-}
 
 /// The model of a .glb or .gltf file; fails the test when tinygltf cannot load it.
 tinygltf::Model load(const std::filesystem::path& file) {
@@ -153,13 +142,53 @@ TEST(GltfIo, SharpFlagsMakeGentlerEdgesCreases) {
   EXPECT_EQ(floats(load(dir / "crease.glb"), "POSITION", 3).size(), 6u * 3);
 }
 
+TEST(GltfIo, StrokesBecomeASecondMeshOfLineStrips) {
+  TempDir dir;
+  MeshAttributes attributes;
+  attributes.strokes = {{{0, 0, 0}, {1, 0, 0}, {1, 2, 0}}, {{5, 5, 5}}, {{0, 0, 1}, {0.25, 0.5, 1}}};
+  write_mesh(cube_mesh(), dir / "cube.glb", attributes);
+  write_mesh(TriMesh(), dir / "strokes_only.gltf", attributes);
+  for (const char* name : {"cube.glb", "strokes_only.gltf"}) {
+    SCOPED_TRACE(name);
+    const tinygltf::Model model = load(dir / name);
+    const bool surface = std::string(name) == "cube.glb";
+    ASSERT_EQ(model.nodes.size(), 2u);
+    EXPECT_EQ(model.scenes.at(0).nodes, (std::vector<int>{0, 1}));
+    EXPECT_EQ(model.nodes[0].mesh, surface ? 0 : -1);
+    EXPECT_EQ(model.nodes[1].name, "strokes");
+    const tinygltf::Mesh& strokes = model.meshes.at(model.nodes[1].mesh);
+    ASSERT_EQ(strokes.primitives.size(), 2u);  // the one-point stroke is left out
+    for (std::size_t k = 0; k < 2; ++k) {
+      const tinygltf::Primitive& primitive = strokes.primitives[k];
+      EXPECT_EQ(primitive.mode, TINYGLTF_MODE_LINE_STRIP);
+      const tinygltf::Accessor& accessor = model.accessors.at(primitive.attributes.at("POSITION"));
+      const auto& stroke = attributes.strokes[k == 0 ? 0 : 2];
+      ASSERT_EQ(accessor.count, stroke.size());
+      const tinygltf::BufferView& view = model.bufferViews.at(accessor.bufferView);
+      std::vector<float> p(3 * accessor.count);
+      std::memcpy(p.data(), model.buffers.at(view.buffer).data.data() + view.byteOffset + accessor.byteOffset,
+                  p.size() * sizeof(float));
+      for (std::size_t i = 0; i < stroke.size(); ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(p[3 * i + c], static_cast<float>(stroke[i][c]));
+    }
+  }
+}
+
 TEST(GltfIo, SurfaceCommandWritesTheBundledCubeAsGlb) {
   TempDir dir;
   const std::string tests = SKETCHSURF_TESTS_DIR;
   const std::string command = std::string("'") + SKETCHSURF_CLI + "' surface '" + tests + "/data/cube.json' --proxy '" +
-                              tests + "/data/cube_proxy.obj' -q -o '" + (dir / "cube.glb").string() + "'";
+                              tests + "/data/cube_proxy.obj' -q -o '" + (dir / "cube.glb").string() + "' --with-strokes";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   const tinygltf::Model model = load(dir / "cube.glb");
+  // The strokes as line strips, one per stroke of the sketch.
+  const Sketch sketch = read_sketch(tests + "/data/cube.json");
+  ASSERT_EQ(model.meshes.size(), 2u);
+  EXPECT_EQ(model.meshes[1].primitives.size(), sketch.strokes.size());
+  std::size_t points = 0;
+  for (const auto& primitive : model.meshes[1].primitives)
+    points += model.accessors.at(primitive.attributes.at("POSITION")).count;
+  EXPECT_EQ(points, sketch.point_count());
   const std::vector<float> label = floats(model, "_LABEL", 1), n = floats(model, "NORMAL", 3);
   floats(model, "COLOR_0", 3);
   EXPECT_EQ(std::set<float>(label.begin(), label.end()).size(), 6u);  // the six faces

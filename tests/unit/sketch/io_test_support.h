@@ -1,6 +1,6 @@
 #pragma once
 // Helpers for the sketch-format tests: a scratch directory, a sketch with every attribute set to
-// awkward values, and exact comparisons.
+// awkward values, a cube mesh with sharp edges, and exact comparisons.
 
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 #include <string>
 
 #include "surfacing/error.h"
+#include "surfacing/mesh.h"
 #include "surfacing/sketch/sketch.h"
 
 namespace sketchsurf::testing {
@@ -57,6 +58,19 @@ inline std::string read_text(const std::filesystem::path& file) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+/// A unit cube of 12 triangles, every edge of its squares a 90-degree crease.
+inline TriMesh cube_mesh() {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> v;
+  for (int i = 0; i < 8; ++i) v.push_back(mesh.add_vertex(TriMesh::Point(i & 1, (i >> 1) & 1, (i >> 2) & 1)));
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    mesh.add_face(v[q[0]], v[q[1]], v[q[2]]);
+    mesh.add_face(v[q[0]], v[q[2]], v[q[3]]);
+  }
+  return mesh;
 }
 
 /// True when both doubles have the same bits (so -0.0 != 0.0).

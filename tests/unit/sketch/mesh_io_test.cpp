@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <sstream>
+#include <string>
 
 #include "tests/support/shapes.h"
 #include "tests/unit/sketch/io_test_support.h"
@@ -68,6 +71,86 @@ TEST(MeshIo, ObjRoundTripKeepsPositionsFacesAndColours) {
   EXPECT_EQ(back.colors, attributes.colors);
   // The torus is closed: every edge has two faces after reading.
   for (auto e : read.edges()) EXPECT_FALSE(read.is_boundary(e));
+}
+
+TEST(MeshIo, ObjNormalsAreSplitAlongCreasesAndFacesGroupedByRegion) {
+  TempDir dir;
+  const TriMesh mesh = testing::cube_mesh();
+  MeshAttributes attributes;
+  for (auto v : mesh.vertices()) attributes.labels.push_back(static_cast<int>(mesh.point(v)[0]));  // x
+  write_mesh(mesh, dir / "cube.obj", attributes);
+  const TriMesh back = read_mesh(dir / "cube.obj");  // the faces in region order
+  EXPECT_EQ(back.n_faces(), mesh.n_faces());
+  EXPECT_EQ(vertex_matrix(back), vertex_matrix(mesh));
+  std::vector<Eigen::Vector3d> v, vn;
+  std::vector<std::string> groups;
+  std::size_t faces = 0;
+  std::istringstream text(testing::read_text(dir / "cube.obj"));
+  for (std::string line; std::getline(text, line);) {
+    std::istringstream in(line);
+    std::string tag;
+    in >> tag;
+    if (tag == "v" || tag == "vn") {
+      Eigen::Vector3d p;
+      in >> p.x() >> p.y() >> p.z();
+      (tag == "v" ? v : vn).push_back(p);
+    } else if (tag == "g") {
+      groups.push_back(line.substr(2));
+    } else if (tag == "f") {
+      // Every corner names its normal (v//vn), and the normal is the face's: the cube's 90-degree
+      // edges are all creases.
+      std::array<Eigen::Vector3d, 3> p, n;
+      for (int k = 0; k < 3; ++k) {
+        std::string corner;
+        in >> corner;
+        const auto slashes = corner.find("//");
+        ASSERT_NE(slashes, std::string::npos) << line;
+        p[k] = v.at(std::stoul(corner.substr(0, slashes)) - 1);
+        n[k] = vn.at(std::stoul(corner.substr(slashes + 2)) - 1);
+      }
+      const Eigen::Vector3d normal = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
+      for (const auto& nk : n) EXPECT_NEAR(nk.dot(normal), 1.0, 1e-12) << line;
+      ++faces;
+    }
+  }
+  EXPECT_EQ(faces, 12u);
+  EXPECT_EQ(vn.size(), 24u);  // 4 corners on each of the 6 sides
+  // Faces in one group per region label, each group once.
+  EXPECT_EQ(groups, (std::vector<std::string>{"region_0", "region_1"}));
+}
+
+TEST(MeshIo, PlyEdgeElementFlagsTheCreases) {
+  TempDir dir;
+  const TriMesh cube = testing::cube_mesh();
+  MeshAttributes attributes;
+  attributes.sharp.assign(cube.n_vertices(), 0);
+  write_mesh(cube, dir / "cube.ply", attributes);
+  MeshAttributes back;
+  expect_same_mesh(cube, read_mesh(dir / "cube.ply", &back), 0.0);
+  // The 12 edges of the cube, not the 6 diagonals of its sides.
+  ASSERT_EQ(back.sharp_edges.size(), 12u);
+  for (const auto& [a, b] : back.sharp_edges) {
+    const auto d = cube.point(TriMesh::VertexHandle(a)) - cube.point(TriMesh::VertexHandle(b));
+    EXPECT_DOUBLE_EQ(d.norm(), 1.0);
+  }
+  // A smooth sphere has none; without sharp flags there is no edge element at all.
+  const TriMesh sphere = testing::icosphere(2, 1.0);
+  attributes.sharp.assign(sphere.n_vertices(), 1);
+  write_mesh(sphere, dir / "sphere.ply", attributes);
+  EXPECT_NE(testing::read_text(dir / "sphere.ply").find("element edge " + std::to_string(sphere.n_edges())),
+            std::string::npos);
+  read_mesh(dir / "sphere.ply", &back);
+  EXPECT_TRUE(back.sharp_edges.empty());
+  write_mesh(cube, dir / "plain.ply");
+  EXPECT_EQ(testing::read_text(dir / "plain.ply").find("element edge"), std::string::npos);
+  // An edge naming a vertex that does not exist is an input error.
+  testing::write_text(dir / "bad.ply",
+                      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                      "element edge 1\nproperty int vertex1\nproperty int vertex2\nproperty uchar sharp\n"
+                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0 7 1\n");
+  expect_error([&] { read_mesh(dir / "bad.ply", &back); }, ErrorKind::Input,
+               {"bad.ply", "edge 0: vertex index 7"});
 }
 
 TEST(MeshIo, NegativeListLengthsAndFloatIndicesOutOfRangeAreInputErrors) {
