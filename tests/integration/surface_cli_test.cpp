@@ -42,13 +42,19 @@ fs::path temp_dir(const std::string& name) {
   return dir;
 }
 
-TEST(SurfaceCli, WritesTheMeshTheRegionsAndTheReport) {
-  const fs::path dir = temp_dir("ok");
-  // Parameters stored with the sketch: a coarse proxy resolution and two restarts keep it short.
+/// Writes DIR/cube.json and a rough proxy DIR/proxy.ply, with parameters stored in the sketch (a
+/// coarse proxy resolution and two restarts) that keep a run short; returns the cube sketch.
+Sketch write_quick_cube(const fs::path& dir) {
   Sketch cube = testing::cube_sketch();
   cube.params = {{"proxy.edge", 0.03}, {"segment.restarts", 2}};
   write_sketch(cube, dir / "cube.json");
   write_mesh(testing::rounded_box_mesh(3, {0.5, 0.5, 0.5}, 0.1), dir / "proxy.ply");
+  return cube;
+}
+
+TEST(SurfaceCli, WritesTheMeshTheRegionsAndTheReport) {
+  const fs::path dir = temp_dir("ok");
+  Sketch cube = write_quick_cube(dir);
   const CliRun r = run_cli("surface " + (dir / "cube.json").string() + " --proxy " +
                             (dir / "proxy.ply").string() + " -o " + (dir / "out.ply").string() +
                             " --regions " + (dir / "regions.ply").string() + " --report " +
@@ -96,10 +102,7 @@ TEST(SurfaceCli, WritesTheMeshTheRegionsAndTheReport) {
 
 TEST(SurfaceCli, ObjOutputHasNormalsAndAGroupPerRegion) {
   const fs::path dir = temp_dir("obj");
-  Sketch cube = testing::cube_sketch();
-  cube.params = {{"proxy.edge", 0.03}, {"segment.restarts", 2}};
-  write_sketch(cube, dir / "cube.json");
-  write_mesh(testing::rounded_box_mesh(3, {0.5, 0.5, 0.5}, 0.1), dir / "proxy.ply");
+  write_quick_cube(dir);
   const std::string args = "surface " + (dir / "cube.json").string() + " --proxy " + (dir / "proxy.ply").string();
   // Strokes go into glTF only: asked for with another output, refused before any work.
   const CliRun refused = run_cli(args + " -o " + (dir / "out.ply").string() + " --with-strokes", dir);
