@@ -1,8 +1,9 @@
 // Writes the seed corpora of the reader fuzzers from what the project made (tests/data): small
-// versions of the bundled sketches (a few strokes of a few points, so that mutations stay cheap,
-// with their annotations, mirror plane and parameters) in every sketch format, and the bundled
-// proxy and a labelled tetrahedron in every mesh format the --proxy reader takes (binary PLY with
-// labels, colours and sharp flags, ASCII and big-endian PLY, OBJ with colours and slashed faces).
+// versions of the bundled sketches (every .json there that reads as a sketch; a few strokes of a
+// few points, so that mutations stay cheap, with their annotations, mirror plane and parameters)
+// in every sketch format, and the bundled proxy and a labelled tetrahedron in every mesh format
+// the --proxy reader takes (binary PLY with labels, colours and sharp flags, ASCII and big-endian
+// PLY, OBJ with colours and slashed faces).
 //   make_fuzz_seeds TESTS_DATA_DIR OUT_DIR
 // OUT_DIR gets one folder per target: tilt, tilt_dir (the inputs of the directory-form target:
 // a 4-byte little-endian length, data.sketch, metadata.json), curves, obj, json, mesh_obj,
@@ -21,6 +22,7 @@
 
 #include <zip.h>
 
+#include "surfacing/error.h"
 #include "surfacing/sketch/io/mesh_io.h"
 #include "surfacing/sketch/io/sketch_io.h"
 
@@ -129,7 +131,13 @@ int main(int argc, char** argv) {
       fs::create_directories(out / target);
     for (const auto& entry : fs::directory_iterator(data)) {
       if (entry.path().extension() != ".json") continue;
-      const Sketch sketch = read_sketch(entry.path());
+      Sketch sketch;
+      try {
+        sketch = read_sketch(entry.path());
+      } catch (const Error& e) {  // another JSON document kept with the examples
+        std::fprintf(stderr, "make_fuzz_seeds: skipped %s\n", e.what());
+        continue;
+      }
       const std::string name = entry.path().stem().string();
       for (const auto& [strokes, points] : {std::pair{2, 3}, std::pair{4, 8}}) {
         const Sketch small = shrink(sketch, strokes, points);
