@@ -66,7 +66,7 @@ Stroke mirrored(const Stroke& stroke, const Plane& plane) {
   return out;
 }
 
-void check_finite_positive(double v, const char* name, std::string* why, bool& ok) {
+void check_non_negative(double v, const char* name, std::string* why, bool& ok) {
   if (ok && (!(v >= 0.0) || !std::isfinite(v))) {
     if (why) *why = std::string(name) + " must be >= 0 and finite";
     ok = false;
@@ -93,9 +93,9 @@ std::optional<Tool> parse_tool(std::string_view name) {
 
 bool DrawingOptions::valid(std::string* why) const {
   bool ok = true;
-  check_finite_positive(min_spacing, "min_spacing", why, ok);
-  check_finite_positive(pick_radius, "pick_radius", why, ok);
-  check_finite_positive(width, "width", why, ok);
+  check_non_negative(min_spacing, "min_spacing", why, ok);
+  check_non_negative(pick_radius, "pick_radius", why, ok);
+  check_non_negative(width, "width", why, ok);
   return ok;
 }
 

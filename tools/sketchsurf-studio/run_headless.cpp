@@ -60,13 +60,13 @@ double HeadlessStudio::frame(double now) {
   studio.input(now);
   if (previous_ < 0.0) {  // the first frame: lay the panel out once
     parts_->ui.new_frame(w, h, 1.0 / 60.0);
-    draw_panel(studio, parts_->panel, log_, w, h);
+    draw_panel(studio, parts_->panel, log_);
     parts_->ui.discard();
   }
   parts_->ui.new_frame(w, h, now - previous_);
   previous_ = now;
-  draw_panel(studio, parts_->panel, log_, w, h);
-  studio.update(w, h);
+  draw_panel(studio, parts_->panel, log_);
+  studio.update();
   context_->submit_and_wait([&](VkCommandBuffer cmd) {
     parts_->target.begin(cmd, studio.view_options().background);
     studio.record(cmd, parts_->renderer, w, h, nullptr);

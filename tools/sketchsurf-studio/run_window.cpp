@@ -301,8 +301,8 @@ int run_window(const StudioOptions& options, const Log& log) {
     const int width = int(swapchain.extent().width), height = int(swapchain.extent().height);
     ui.new_frame(width, height, now - previous);
     previous = now;
-    draw_panel(studio, panel, log, width, height);
-    studio.update(width, height);
+    draw_panel(studio, panel, log);
+    studio.update();
     const bool last = options.frames && studio.done(frame + 1);
     const bool take_shot = last && !options.screenshot.empty() && swapchain.readable();
     if (take_shot)

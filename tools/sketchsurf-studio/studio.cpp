@@ -137,7 +137,7 @@ void Studio::set_status(const std::string& line) {
   log_.detail(line);
 }
 
-void Studio::update(int width, int height) {
+void Studio::update() {
   if (session_->poll_surface()) set_status("surface: " + session_->surface_status().message);
   if (options_.surface && !surface_started_ && !replaying()) {
     act(session::simple_action("surface"));
@@ -153,8 +153,6 @@ void Studio::update(int width, int height) {
   // The grid lies around the controller (in whole cells): it shows where the strokes go.
   overlay.grid_centre = cursor.tracked ? cursor.pose.position : Eigen::Vector3d::Zero();
   view_.update(*session_, overlay, view_options_);
-  (void)width;
-  (void)height;
 }
 
 void Studio::log_progress() {
@@ -174,18 +172,16 @@ void Studio::log_progress() {
   }
 }
 
-render::Camera Studio::camera(int width, int height) const {
+render::Camera Studio::camera() const {
   render::Camera c = mouse_.camera();
   const BoundingBox box = view_.bounds();
   if (!box.empty() && box.diagonal() > 0.0) render::fit_clip_planes(c, box);
-  (void)width;
-  (void)height;
   return c;
 }
 
 void Studio::record(VkCommandBuffer cmd, const render::Renderer& renderer, int width, int height,
                     std::vector<std::shared_ptr<const void>>* in_use) const {
-  view_.record(cmd, renderer, camera(width, height), double(width) / double(height), view_options_,
+  view_.record(cmd, renderer, camera(), double(width) / double(height), view_options_,
                in_use);
 }
 

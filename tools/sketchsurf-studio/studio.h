@@ -81,13 +81,13 @@ class Studio {
   /// they end the run: rethrown).
   void act(const input::TrackAction& action);
   /// Per frame, after input and panel: takes a finished surfacing, starts --surface when due,
-  /// brings the view up to date for a width x height picture.
-  void update(int width, int height);
+  /// brings the view up to date.
+  void update();
   /// Records the view into the render pass begun on `cmd`.
   void record(VkCommandBuffer cmd, const render::Renderer& renderer, int width, int height,
               std::vector<std::shared_ptr<const void>>* in_use) const;
-  /// The camera of a width x height picture, clip planes fitted to what is drawn.
-  render::Camera camera(int width, int height) const;
+  /// The view's camera, clip planes fitted to what is drawn.
+  render::Camera camera() const;
 
   bool replaying() const { return scripted_ && !scripted_->finished(); }
   /// True once `frames` frames were rendered, the replay is over and --surface has ended.
@@ -106,7 +106,7 @@ class Studio {
   void frame_all(int width, int height);
   /// Frames the view on `box`, in the part of a width x height window the panel leaves free.
   void frame_box(const BoundingBox& box, int width, int height);
-  /// Pixels from the window's left edge to the right of the panel.
+  /// The panel's width, and the pixels it takes from the window's left edge (with its margins).
   static constexpr int kPanelWidth = 320, kPanelSpace = 336;
 
   /// At exit: --save, --save-surface, --record; the autosave is removed when nothing is unsaved.

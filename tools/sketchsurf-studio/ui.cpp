@@ -98,7 +98,7 @@ void ImGuiLayer::discard() { ImGui::EndFrame(); }
 bool ImGuiLayer::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
 bool ImGuiLayer::wants_keyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
 
-void draw_panel(Studio& studio, PanelState& st, const Log& log, int width, int height) {
+void draw_panel(Studio& studio, PanelState& st, const Log& log) {
   auto& session = studio.session();
   auto& mouse = studio.mouse();
   auto& view = studio.view_options();
@@ -233,8 +233,6 @@ void draw_panel(Studio& studio, PanelState& st, const Log& log, int width, int h
   if (st.frame == 3)
     for (const auto& [name, at] : where)
       log.detail("panel: '" + name + "' at " + std::to_string(int(at.x)) + " " + std::to_string(int(at.y)));
-  (void)width;
-  (void)height;
 }
 
 }  // namespace sketchsurf::studio

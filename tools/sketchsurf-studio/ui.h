@@ -60,6 +60,6 @@ struct PanelState {
 /// Draws the panel for this frame and applies what was clicked (through studio.act() for the
 /// actions a track records). With --verbose, logs where the main widgets are on the 3rd frame
 /// ("panel: 'Mirror' at X Y"), for scripted clicks.
-void draw_panel(Studio& studio, PanelState& state, const Log& log, int width, int height);
+void draw_panel(Studio& studio, PanelState& state, const Log& log);
 
 }  // namespace sketchsurf::studio
