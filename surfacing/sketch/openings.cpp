@@ -111,7 +111,17 @@ std::vector<Opening> find_openings(const Sketch& sketch, const OpeningOptions& o
     if (loop->plane.normal.y() < options.lowest_up) continue;
     openings.push_back({i, rim.id, std::move(*loop)});
   }
-  return openings;
+  // Sections drawn round an open object under its rim pass the same tests: only the loops with no
+  // other one beyond them on their open side (within their outline) are the rims.
+  std::vector<Opening> rims;
+  for (const Opening& o : openings) {
+    const bool covered = std::any_of(openings.begin(), openings.end(), [&](const Opening& other) {
+      return &other != &o && o.loop.height(other.loop.center) > options.thickness * o.loop.radius &&
+             o.loop.encloses(other.loop.center, 0.0);
+    });
+    if (!covered) rims.push_back(o);
+  }
+  return rims;
 }
 
 }  // namespace sketchsurf

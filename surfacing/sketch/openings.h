@@ -71,8 +71,9 @@ struct Opening {
 
 /// The rims of `sketch`: strokes (not ignored, not boundary, at least min_size * diagonal across)
 /// whose loop has no stroke point across it and none beyond it on one side, and the points of
-/// other strokes inside its outline on the other side (the object the rim opens), and that do
-/// not face down (lowest_up). Deterministic; `sketch` should be resampled.
+/// other strokes inside its outline on the other side (the object the rim opens), that do not
+/// face down (lowest_up) and that have no other such loop beyond them, over their outline (the
+/// sections of an open cup under its rim). Deterministic; `sketch` should be resampled.
 std::vector<Opening> find_openings(const Sketch& sketch, const OpeningOptions& options = {});
 
 }  // namespace sketchsurf

@@ -55,6 +55,18 @@ TEST(Openings, ALoopFacingDownIsABaseNotAnOpening) {
   EXPECT_EQ(find_openings(turned_cup(V3(0, 1, 0))).size(), 1u);
 }
 
+TEST(Openings, SectionsUnderTheRimAreNotRims) {
+  Sketch cup = testing::cup_sketch();  // walls from radius 0.35 at z = 0 to 0.5 at z = 0.8
+  for (double z : {0.2, 0.4, 0.6})
+    cup.strokes.push_back(testing::sample_curve([z](double t) {
+      const double r = 0.35 + 0.15 * z / 0.8;
+      return V3(r * std::cos(t), r * std::sin(t), z);
+    }, 0.0, 2 * M_PI, 0.0125));
+  const auto found = find_openings(prepared(cup));
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].stroke, 1u);
+}
+
 TEST(Openings, AStrokeAcrossTheRimClosesIt) {
   Sketch cup = testing::cup_sketch();
   cup.strokes.push_back(testing::sample_curve([](double t) { return V3(t, 0.1, 0.8); }, -0.45, 0.45, 0.01));
