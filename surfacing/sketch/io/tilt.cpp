@@ -32,6 +32,7 @@
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/atomic_file.h"
 #include "surfacing/sketch/io/input_limits.h"
+#include "surfacing/sketch/io/text_io.h"
 
 namespace sketchsurf {
 
@@ -240,7 +241,9 @@ Metadata parse_metadata(std::string_view text, const fs::path& where) {
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    throw Error::input_at_byte(where, e.byte, std::string("invalid JSON: ") + e.what());
+    throw Error::input_at_byte(where, e.byte, "invalid JSON: " + io_detail::excerpt(e.what()));
+  } catch (const nlohmann::json::exception& e) {  // a number too large for a double
+    throw Error::input(where, "invalid JSON: " + io_detail::excerpt(e.what()));
   }
   if (!j.is_object()) throw Error::input(where, "expected a JSON object");
   Metadata meta;

@@ -185,6 +185,28 @@ TEST(TiltRobustness, RandomCorruptionsOfMetadata) {
   }
 }
 
+TEST(TiltRobustness, MetadataNumbersTooLargeForADoubleAreAnInputError) {
+  // Found by fuzz_tilt_dir (tools/fuzz): the JSON parser's number overflow escaped as
+  // nlohmann::json::out_of_range instead of an Error naming the file.
+  const ByteVec sketch = entry(small_tilt(), "data.sketch");
+  const std::string number = "0.8" + std::string(5000, '1') + "e3056791760";
+  EXPECT_FALSE(read_is_safe(simple_tilt(sketch, R"({"SceneTransformInRoomSpace": [)" + number + "]}"),
+                            "metadata number overflow"));
+  try {
+    read_tilt_bytes(simple_tilt(sketch, R"({"x": 1e400})"), "fuzz.tilt");
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("fuzz.tilt/metadata.json: invalid JSON"), std::string::npos)
+        << e.what();
+  }
+  try {
+    read_tilt_bytes(simple_tilt(sketch, "{\"x\": " + number + "}"), "fuzz.tilt");
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_LT(std::string(e.what()).size(), 300u) << "the number is quoted cut";
+  }
+}
+
 TEST(TiltRobustness, AbsurdCountsAreRefusedBeforeAllocating) {
   RawStroke stroke;
   stroke.stroke_mask = 0x1;
