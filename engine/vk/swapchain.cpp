@@ -4,19 +4,11 @@
 #include <cstring>
 
 #include "engine/vk/check.h"
+#include "engine/vk/render_pass.h"
 
 namespace sketchsurf::vk {
 
 namespace {
-
-VkFormat depth_format(const Context& context) {
-  for (VkFormat f : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D16_UNORM}) {
-    VkFormatProperties props;
-    vkGetPhysicalDeviceFormatProperties(context.physical_device(), f, &props);
-    if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) return f;
-  }
-  throw Error::processing("'" + context.device_info().name + "' supports no depth format");
-}
 
 /// An 8-bit UNORM format, so that the window shows the colours the offscreen target (RGBA8
 /// UNORM) writes to PNG: the same pictures on both targets.
@@ -59,44 +51,10 @@ Swapchain::Swapchain(const Context& context, VkSurfaceKHR surface, VkExtent2D ex
                             "' cannot present to this window; run with --headless");
   format_ = choose_format(context.physical_device(), surface);
   present_mode_ = choose_mode(context.physical_device(), surface, vsync);
-  depth_format_ = depth_format(context);
+  depth_format_ = choose_depth_format(context);
 
-  // Attachments as in OffscreenTarget: 0 colour (multisampled, or the swapchain image itself),
-  // 1 depth, 2 the swapchain image as resolve target (with MSAA). Final layout: PRESENT_SRC.
-  const bool msaa = samples_ != VK_SAMPLE_COUNT_1_BIT;
-  std::vector<VkAttachmentDescription> attachments;
-  VkAttachmentDescription color{};
-  color.format = format_.format;
-  color.samples = samples_;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  color.finalLayout = msaa ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-  attachments.push_back(color);
-  VkAttachmentDescription depth = color;
-  depth.format = depth_format_;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  attachments.push_back(depth);
-  if (msaa) {
-    VkAttachmentDescription resolve = color;
-    resolve.samples = VK_SAMPLE_COUNT_1_BIT;
-    resolve.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    resolve.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    resolve.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    attachments.push_back(resolve);
-  }
-  const VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  const VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  const VkAttachmentReference resolve_ref{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription subpass{};
-  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  subpass.colorAttachmentCount = 1;
-  subpass.pColorAttachments = &color_ref;
-  subpass.pDepthStencilAttachment = &depth_ref;
-  subpass.pResolveAttachments = msaa ? &resolve_ref : nullptr;
+  // Attachments (render_pass.h): the swapchain image is the colour target, or the resolve target
+  // with MSAA; it ends ready to present.
   // The image is acquired (semaphore waited at COLOR_ATTACHMENT_OUTPUT) before it is written;
   // depth is reused by the next frame only after this one's depth tests.
   VkSubpassDependency dep{};
@@ -109,16 +67,8 @@ Swapchain::Swapchain(const Context& context, VkSurfaceKHR surface, VkExtent2D ex
   dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  VkRenderPassCreateInfo pass_info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  pass_info.attachmentCount = static_cast<std::uint32_t>(attachments.size());
-  pass_info.pAttachments = attachments.data();
-  pass_info.subpassCount = 1;
-  pass_info.pSubpasses = &subpass;
-  pass_info.dependencyCount = 1;
-  pass_info.pDependencies = &dep;
-  VkRenderPass pass = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateRenderPass(context.device(), &pass_info, nullptr, &pass));
-  render_pass_ = UniqueRenderPass(context.device(), pass);
+  render_pass_ = create_render_pass(context, format_.format, depth_format_, samples_,
+                                    VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, {dep});
   build(extent, VK_NULL_HANDLE);
 }
 
@@ -202,36 +152,13 @@ void Swapchain::build(VkExtent2D wanted, VkSwapchainKHR old) {
     attachments.push_back(msaa ? color_msaa_.view() : view);
     attachments.push_back(depth_.view());
     if (msaa) attachments.push_back(view);
-    VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fb_info.renderPass = render_pass_.get();
-    fb_info.attachmentCount = static_cast<std::uint32_t>(attachments.size());
-    fb_info.pAttachments = attachments.data();
-    fb_info.width = extent_.width;
-    fb_info.height = extent_.height;
-    fb_info.layers = 1;
-    VkFramebuffer fb = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateFramebuffer(device, &fb_info, nullptr, &fb));
-    framebuffers_.emplace_back(device, fb);
+    framebuffers_.push_back(create_framebuffer(*context_, render_pass_.get(), extent_, attachments));
   }
 }
 
 void Swapchain::begin(VkCommandBuffer cmd, std::uint32_t index,
                       const std::array<float, 4>& background) const {
-  std::array<VkClearValue, 3> clear{};
-  clear[0].color = {{background[0], background[1], background[2], background[3]}};
-  clear[1].depthStencil = {1.0f, 0};
-  clear[2].color = clear[0].color;
-  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  begin.renderPass = render_pass_.get();
-  begin.framebuffer = framebuffers_.at(index).get();
-  begin.renderArea = {{0, 0}, extent_};
-  begin.clearValueCount = samples_ != VK_SAMPLE_COUNT_1_BIT ? 3u : 2u;
-  begin.pClearValues = clear.data();
-  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-  const VkViewport viewport{0.f, 0.f, float(extent_.width), float(extent_.height), 0.f, 1.f};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  const VkRect2D scissor{{0, 0}, extent_};
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  begin_render_pass(cmd, render_pass_.get(), framebuffers_.at(index).get(), extent_, samples_, background);
 }
 
 void Swapchain::record_copy(VkCommandBuffer cmd, std::uint32_t index, const Buffer& buffer) const {

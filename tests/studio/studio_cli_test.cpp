@@ -189,7 +189,9 @@ TEST(StudioHeadless, UndoAndRedoOfEveryToolInATrackRestoreTheSketchExactly) {
                                   dir);
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const Sketch saved = read_sketch(out);
-    if (mode == 1) EXPECT_TRUE(saved.strokes.empty() && !saved.mirror);  // everything undone
+    if (mode == 1) {
+      EXPECT_TRUE(saved.strokes.empty() && !saved.mirror);  // everything undone
+    }
     if (mode == 2) expect_same(saved, full);  // redone, then clear and clear mirror undone
     expect_same(saved, replayed_here(tools_track(mode)));
   }
