@@ -17,20 +17,7 @@ using namespace sketchsurf;
 /// 200 strokes of 500 points (100,000 points), each a circle around the torus's tube, densely
 /// sampled like a raw VR capture: the ribbons cover about 60% of the torus's area, as strokes
 /// on a sketched surface do (a sketch's strokes are not a dense fill).
-Sketch ring_sketch() {
-  Sketch sketch;
-  for (int s = 0; s < 200; ++s) {
-    Stroke stroke;
-    const double u = 2.0 * M_PI * s / 200.0;
-    for (int i = 0; i < 500; ++i) {
-      const double v = 2.0 * M_PI * i / 499.0;
-      const double r = 0.5 + 0.21 * std::cos(v);
-      stroke.points.emplace_back(r * std::cos(u), r * std::sin(u), 0.21 * std::sin(v));
-    }
-    sketch.strokes.push_back(std::move(stroke));
-  }
-  return sketch;
-}
+Sketch ring_sketch() { return testing::torus_ring_sketch(200, 500); }
 
 struct BigScene {
   Sketch sketch = ring_sketch();

@@ -21,20 +21,7 @@ namespace {
 using namespace sketchsurf;
 
 /// 100 strokes of 500 points (50,000 points) around the tube of a torus, like a dense VR capture.
-Sketch ring_sketch() {
-  Sketch sketch;
-  for (int s = 0; s < 100; ++s) {
-    Stroke stroke;
-    const double u = 2.0 * M_PI * s / 100.0;
-    for (int i = 0; i < 500; ++i) {
-      const double v = 2.0 * M_PI * i / 499.0;
-      const double r = 0.5 + 0.21 * std::cos(v);
-      stroke.points.emplace_back(r * std::cos(u), r * std::sin(u), 0.21 * std::sin(v));
-    }
-    sketch.strokes.push_back(std::move(stroke));
-  }
-  return sketch;
-}
+Sketch ring_sketch() { return testing::torus_ring_sketch(100, 500); }
 
 /// A torus of 100,000 triangles, 8 regions around it.
 SurfaceResult torus_surface() {

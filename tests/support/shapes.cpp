@@ -136,6 +136,21 @@ Sketch cup_sketch(double rim, double bottom, double height, int sections) {
   return sketch;
 }
 
+Sketch torus_ring_sketch(int strokes, int points) {
+  Sketch sketch;
+  for (int s = 0; s < strokes; ++s) {
+    Stroke stroke;
+    const double u = 2.0 * M_PI * s / strokes;
+    for (int i = 0; i < points; ++i) {
+      const double v = 2.0 * M_PI * i / (points - 1);
+      const double r = 0.5 + 0.21 * std::cos(v);
+      stroke.points.emplace_back(r * std::cos(u), r * std::sin(u), 0.21 * std::sin(v));
+    }
+    sketch.strokes.push_back(std::move(stroke));
+  }
+  return sketch;
+}
+
 Sketch sphere_sketch(double radius, int meridians) {
   Sketch sketch;
   sketch.provenance = "generated sphere";

@@ -29,6 +29,10 @@ Sketch cylinder_sketch(double radius = 0.5, double height = 1.0, int side_stroke
 /// across the bottom through the axis and up the opposite side. Nothing crosses the opening.
 Sketch cup_sketch(double rim = 0.5, double bottom = 0.35, double height = 0.8, int sections = 2);
 
+/// `strokes` circles of `points` points each around the tube of the torus of radii 0.5 and 0.21
+/// about +z, evenly spaced: a dense VR-like capture for the renderer's benchmarks.
+Sketch torus_ring_sketch(int strokes, int points);
+
 /// Sphere centred at the origin: `meridians` great half-circles through the poles and the equator.
 Sketch sphere_sketch(double radius = 0.5, int meridians = 4);
 
