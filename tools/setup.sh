@@ -29,6 +29,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-pytest python3-distributed  # python/ and its tests
   libimgui-dev xvfb xauth xdotool
+  libopenxr-dev libopenxr-loader1 openxr-layer-corevalidation  # the headset (sketchsurf-studio --xr)
   clang-14 libclang-rt-14-dev  # the reader fuzzers (tools/fuzz): Clang and its libFuzzer runtime
 )
 

@@ -74,11 +74,22 @@ Eigen::Matrix4d Camera::view_matrix() const {
 Eigen::Matrix4d Camera::projection_matrix(double aspect) const {
   // Right-handed eye space (looking down -z) to Vulkan clip space: y flipped so that +y in the
   // eye is up in the picture, depth mapped to [0, 1].
-  const double t = 1.0 / std::tan(0.5 * fov_y * kDegree);
   const double n = near_plane, f = far_plane;
   Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
-  p(0, 0) = t / aspect;
-  p(1, 1) = -t;
+  if (frustum) {
+    // x / -z runs from tan(left) to tan(right) across the picture, y / -z from tan(up) at the
+    // top to tan(down) at the bottom.
+    const double l = std::tan(frustum->left), r = std::tan(frustum->right);
+    const double u = std::tan(frustum->up), d = std::tan(frustum->down);
+    p(0, 0) = 2.0 / (r - l);
+    p(0, 2) = (r + l) / (r - l);
+    p(1, 1) = -2.0 / (u - d);
+    p(1, 2) = -(u + d) / (u - d);
+  } else {
+    const double t = 1.0 / std::tan(0.5 * fov_y * kDegree);
+    p(0, 0) = t / aspect;
+    p(1, 1) = -t;
+  }
   p(2, 2) = f / (n - f);
   p(2, 3) = f * n / (n - f);
   p(3, 2) = -1.0;
@@ -91,6 +102,19 @@ Eigen::Vector3d Camera::project(const Eigen::Vector3d& p, int width, int height)
   if (clip.w() <= 0.0) return {-1.0, -1.0, -1.0};
   const Eigen::Vector3d ndc = clip.head<3>() / clip.w();
   return {(ndc.x() + 1.0) * 0.5 * width, (ndc.y() + 1.0) * 0.5 * height, ndc.z()};
+}
+
+Camera eye_camera(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                  const Frustum& frustum, double near_plane, double far_plane) {
+  Camera camera;
+  camera.eye = position;
+  camera.target = position + orientation * -Eigen::Vector3d::UnitZ();
+  camera.up = orientation * Eigen::Vector3d::UnitY();
+  camera.frustum = frustum;
+  camera.fov_y = (frustum.up - frustum.down) / kDegree;
+  camera.near_plane = near_plane;
+  camera.far_plane = far_plane;
+  return camera;
 }
 
 Camera fit_camera(const BoundingBox& box, View view, double aspect, const FitOptions& options) {

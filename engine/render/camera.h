@@ -3,6 +3,7 @@
 // a named view, given explicitly, or turned around its target (turntable).
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,6 +28,13 @@ std::optional<View> parse_view(std::string_view name);
 /// The names parse_view() accepts, in enum order.
 std::vector<std::string> view_names();
 
+/// An asymmetric field of view (a headset eye's, OpenXR's XrFovf): the angles of the four clip
+/// planes from the viewing direction, radians; left and down are negative for a frustum around
+/// the direction.
+struct Frustum {
+  double left = -0.5, right = 0.5, up = 0.5, down = -0.5;
+};
+
 /// A perspective camera. Distances in scene units.
 struct Camera {
   Eigen::Vector3d eye{0.0, 0.0, 3.0};   ///< position
@@ -35,15 +43,22 @@ struct Camera {
   double fov_y = 35.0;                  ///< vertical field of view, degrees
   double near_plane = 0.01;             ///< distance from the eye to the near clip plane, > 0
   double far_plane = 100.0;             ///< distance to the far clip plane, > near_plane
+  std::optional<Frustum> frustum;       ///< when set, replaces fov_y and the aspect ratio
 
   /// World -> eye: right-handed, looking down -z.
   Eigen::Matrix4d view_matrix() const;
-  /// Eye -> Vulkan clip space (y down in the picture, depth 0 at near and 1 at far).
+  /// Eye -> Vulkan clip space (y down in the picture, depth 0 at near and 1 at far). `aspect`
+  /// (width / height) is ignored with a frustum.
   Eigen::Matrix4d projection_matrix(double aspect) const;
   /// Pixel coordinates (x right, y down, from the top-left corner) and depth in [0, 1] of `p`
   /// in a width x height picture; depth outside [0, 1] or a negative w means clipped.
   Eigen::Vector3d project(const Eigen::Vector3d& p, int width, int height) const;
 };
+
+/// The camera of an eye at `position` with `orientation` (local -z the viewing direction, +y up,
+/// as an OpenXR view pose) and the field of view `frustum`.
+Camera eye_camera(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                  const Frustum& frustum, double near_plane, double far_plane);
 
 /// How fit_camera() frames a box.
 struct FitOptions {

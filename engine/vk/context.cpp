@@ -130,7 +130,9 @@ Context::Context(const ContextOptions& options) : options_(options) {
   instance_info.ppEnabledExtensionNames = extensions.data();
   if (validation) instance_info.pNext = &messenger_info;  // also covers vkCreate/DestroyInstance
   VkInstance instance = VK_NULL_HANDLE;
-  const VkResult created = vkCreateInstance(&instance_info, nullptr, &instance);
+  const VkResult created = options.factory.create_instance
+                               ? options.factory.create_instance(instance_info, &instance)
+                               : vkCreateInstance(&instance_info, nullptr, &instance);
   if (created == VK_ERROR_INCOMPATIBLE_DRIVER || created == VK_ERROR_INITIALIZATION_FAILED)
     throw Error::processing(missing_driver_message(std::string("vkCreateInstance: ") +
                                                    result_name(created)));
@@ -176,7 +178,18 @@ Context::Context(const ContextOptions& options) : options_(options) {
       }
     infos.push_back(info);
   }
-  const DeviceChoice choice = choose_device(infos, options.device);
+  DeviceChoice choice = choose_device(infos, options.device);
+  if (options.factory.physical_device) {
+    const VkPhysicalDevice wanted = options.factory.physical_device(instance);
+    const auto found = std::find(physical.begin(), physical.end(), wanted);
+    if (found == physical.end() || !infos[std::size_t(found - physical.begin())].graphics)
+      throw Error::processing("the Vulkan device chosen for the headset has no graphics queue (devices: " +
+                              device_list(infos) + ")");
+    choice.index = std::size_t(found - physical.begin());
+    choice.software = infos[*choice.index].type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    choice.message = "rendering on the CPU with '" + infos[*choice.index].name +
+                     "', the device the OpenXR runtime named";
+  }
   if (!choice.index) {
     if (!options.device.empty()) throw Error::usage(choice.message);
     throw Error::processing(missing_driver_message(choice.message));
@@ -204,7 +217,8 @@ Context::Context(const ContextOptions& options) : options_(options) {
     device_info.ppEnabledExtensionNames = &swapchain_extension;
   }
   VkDevice device = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDevice(physical_, &device_info, nullptr, &device));
+  VK_CHECK(options.factory.create_device ? options.factory.create_device(physical_, device_info, &device)
+                                         : vkCreateDevice(physical_, &device_info, nullptr, &device));
   device_ = UniqueDevice(device);
   vkGetDeviceQueue(device, queue_family_, 0, &queue_);
 

@@ -21,6 +21,15 @@ enum class Validation {
   DebugBuilds,  ///< enable it when installed in builds without NDEBUG
 };
 
+/// Who makes the instance and the device in place of Vulkan's own calls: an OpenXR runtime does
+/// (XR_KHR_vulkan_enable2: it adds the extensions it needs and names the physical device of the
+/// headset). An empty member means Vulkan's call (or choose_device()).
+struct ContextFactory {
+  std::function<VkResult(const VkInstanceCreateInfo&, VkInstance*)> create_instance;
+  std::function<VkPhysicalDevice(VkInstance)> physical_device;  ///< throws when there is none
+  std::function<VkResult(VkPhysicalDevice, const VkDeviceCreateInfo&, VkDevice*)> create_device;
+};
+
 /// How to create a Context.
 struct ContextOptions {
   std::string device;                            ///< case-insensitive substring of the device name; empty = best
@@ -30,6 +39,7 @@ struct ContextOptions {
                                                  ///< surface extensions, from GLFW)
   bool presentation = false;                     ///< enable VK_KHR_swapchain; only devices that
                                                  ///< have it are chosen
+  ContextFactory factory;                        ///< how the instance and the device are made
 };
 
 /// What we need to know about a physical device to choose it.
