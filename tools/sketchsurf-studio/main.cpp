@@ -1,6 +1,6 @@
 // sketchsurf-studio: draw a 3D sketch with a 6-DoF controller (the mouse emulating one, or a
 // replayed track), mark what matters, surface it and see the surface appear over the strokes.
-// Thin main(): parses into StudioOptions, runs the window or --headless, maps errors to exit
+// Thin main(): parses into StudioOptions, runs the window, --headless or --xr, maps errors to exit
 // codes (0 ok, 2 usage, 3 invalid input, 4 processing failed / no display, 130 cancelled).
 
 #include <CLI/CLI.hpp>
@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000000));
   app.add_option("--size", size, "Window or picture size WIDTHxHEIGHT")->capture_default_str();
   app.add_flag("--headless", o.headless, "No window: render offscreen (CI, scripted demos)");
+  app.add_flag("--xr", o.xr, "In a headset through OpenXR (the desktop studio when there is none)");
   app.add_option("--save", o.save, "Write the sketch here at exit (.json, .tilt, .obj)");
   app.add_flag("--surface", o.surface, "Surface once the replay is over, and wait for it");
   app.add_option("--save-surface", o.save_surface, "Write the surface here at exit (implies --surface)");
@@ -91,6 +92,7 @@ int main(int argc, char** argv) {
       throw Error::usage("--record and --replay name the same file");
     log.verbose = o.verbose;
     log.quiet = o.quiet;
+    if (o.xr) return studio::run_xr(o, log);
     return o.headless ? studio::run_headless(o, log) : studio::run_window(o, log);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);

@@ -46,6 +46,18 @@ int run_headless(const StudioOptions& options, const Log& log);
 /// --headless or Xvfb when there is no display. Returns the exit code.
 int run_window(const StudioOptions& options, const Log& log);
 
+/// --xr: the studio in a headset through OpenXR: the runtime's Vulkan device, one swapchain per
+/// eye drawn by the same renderer, the controller's samples in place of the mouse's. Without a
+/// runtime or a headset, says what is missing in one line and runs the desktop studio instead
+/// (the window, or --headless). Ends when the runtime stops the session, on SIGINT/SIGTERM, or
+/// after --frames. Returns the exit code.
+int run_xr(const StudioOptions& options, const Log& log);
+
+/// SIGINT and SIGTERM end the front end's loop as a normal exit would (with --save, --record).
+void catch_stop_signals();
+/// True once SIGINT or SIGTERM came.
+bool stop_requested();
+
 /// The message for a machine without a display.
 std::string no_display_message(const std::string& detail);
 

@@ -164,6 +164,13 @@ vk::UniqueSemaphore make_semaphore(VkDevice device) {
 
 }  // namespace
 
+void catch_stop_signals() {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+}
+
+bool stop_requested() { return g_stop != 0; }
+
 std::string no_display_message(const std::string& detail) {
   return "no display to open a window on (" + detail +
          "); run with --headless for offscreen rendering, or under a virtual display: "
@@ -269,8 +276,7 @@ int run_window(const StudioOptions& options, const Log& log) {
   std::size_t frame = 0, presented = 0;
   double previous = 0.0;
   bool screenshot_written = false;
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  catch_stop_signals();
   while (!glfwWindowShouldClose(ws.window) && !g_stop) {
     glfwPollEvents();
     int w = 0, h = 0;

@@ -115,7 +115,7 @@ void Studio::input(double now) {
     mouse_.poll(now);  // the mouse waits for the replay to end
     return;
   }
-  for (const auto& s : mouse_.poll(now)) apply_state(s);
+  for (const auto& s : controller_ ? controller_->poll(now) : mouse_.poll(now)) apply_state(s);
 }
 
 void Studio::act(const input::TrackAction& action) {
@@ -147,9 +147,11 @@ void Studio::update() {
   render::Overlay overlay;
   // The replayed controller until the mouse moves; the drawing plane is the mouse's.
   const bool scripted = scripted_ && (replaying() || mouse_.current().time_s == 0.0);
-  const input::ControllerState cursor = scripted ? scripted_->current() : mouse_.current();
+  const input::ControllerState cursor = scripted      ? scripted_->current()
+                                        : controller_ ? controller_->current()
+                                                      : mouse_.current();
   if (cursor.tracked) overlay.cursor = cursor.pose;
-  if (!scripted) overlay.drawing_plane = mouse_.drawing_plane();
+  if (!scripted && !controller_) overlay.drawing_plane = mouse_.drawing_plane();
   // The grid lies around the controller (in whole cells): it shows where the strokes go.
   overlay.grid_centre = cursor.tracked ? cursor.pose.position : Eigen::Vector3d::Zero();
   view_.update(*session_, overlay, view_options_);
@@ -181,8 +183,12 @@ render::Camera Studio::camera() const {
 
 void Studio::record(VkCommandBuffer cmd, const render::Renderer& renderer, int width, int height,
                     std::vector<std::shared_ptr<const void>>* in_use) const {
-  view_.record(cmd, renderer, camera(), double(width) / double(height), view_options_,
-               in_use);
+  record(cmd, renderer, camera(), double(width) / double(height), in_use);
+}
+
+void Studio::record(VkCommandBuffer cmd, const render::Renderer& renderer, const render::Camera& camera,
+                    double aspect, std::vector<std::shared_ptr<const void>>* in_use) const {
+  view_.record(cmd, renderer, camera, aspect, view_options_, in_use);
 }
 
 std::size_t Studio::frames_wanted() const {

@@ -34,6 +34,7 @@ struct StudioOptions {
   std::optional<int> frames;           ///< run this many frames (at least), then exit
   int width = 1280, height = 720;
   bool headless = false;
+  bool xr = false;                     ///< in a headset (OpenXR); the desktop when there is none
   bool surface = false;                ///< surface once the replay is over; wait for it
   std::map<std::string, double> params;
   int msaa = 0;                        ///< 1, 2 or 4; 0: 4 on a GPU, 1 on the CPU (lavapipe)
@@ -86,6 +87,12 @@ class Studio {
   /// Records the view into the render pass begun on `cmd`.
   void record(VkCommandBuffer cmd, const render::Renderer& renderer, int width, int height,
               std::vector<std::shared_ptr<const void>>* in_use) const;
+  /// Records the view as seen by `camera` (a headset's eye) into the render pass begun on `cmd`.
+  void record(VkCommandBuffer cmd, const render::Renderer& renderer, const render::Camera& camera,
+              double aspect, std::vector<std::shared_ptr<const void>>* in_use) const;
+  /// Takes the samples of `controller` (a headset's, not owned) in place of the mouse's; null
+  /// gives the mouse back.
+  void set_controller(input::Controller6DoF* controller) { controller_ = controller; }
   /// The view's camera, clip planes fitted to what is drawn.
   render::Camera camera() const;
 
@@ -120,6 +127,7 @@ class Studio {
   const Log& log_;
   std::unique_ptr<session::SketchSession> session_;
   input::MouseController mouse_;
+  input::Controller6DoF* controller_ = nullptr;
   std::optional<input::ScriptedController> scripted_;
   input::Track recorded_;
   render::SessionView view_;
