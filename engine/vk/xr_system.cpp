@@ -107,7 +107,9 @@ XrSystem::XrSystem(const XrSystemOptions& options) : options_(options) {
                                                count, &count, eye_views_.data()));
     const auto requirements =
         function<PFN_xrGetVulkanGraphicsRequirements2KHR>("xrGetVulkanGraphicsRequirements2KHR");
-    XR_CHECK(requirements(instance_, system_, &requirements_));
+    XrGraphicsRequirementsVulkan2KHR needs{XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR};
+    XR_CHECK(requirements(instance_, system_, &needs));
+    min_vulkan_ = needs.minApiVersionSupported;
     log("OpenXR runtime '" + runtime_ + "', headset '" + system_name_ + "', " +
         std::to_string(eye_views_[0].recommendedImageRectWidth) + "x" +
         std::to_string(eye_views_[0].recommendedImageRectHeight) + " per eye");
@@ -133,9 +135,9 @@ void XrSystem::log(const std::string& line) const {
 
 std::unique_ptr<Context> XrSystem::create_context(ContextOptions options) const {
   // The context asks for Vulkan 1.1; a runtime that needs a newer one says so here.
-  if (requirements_.minApiVersionSupported > XR_MAKE_VERSION(1, 1, 0))
+  if (min_vulkan_ > XR_MAKE_VERSION(1, 1, 0))
     throw XrUnavailable("the OpenXR runtime '" + runtime_ + "' needs Vulkan " +
-                        version_text(requirements_.minApiVersionSupported) + "; sketchsurf uses 1.1");
+                        version_text(min_vulkan_) + "; sketchsurf uses 1.1");
   const auto create_instance = function<PFN_xrCreateVulkanInstanceKHR>("xrCreateVulkanInstanceKHR");
   const auto physical_device = function<PFN_xrGetVulkanGraphicsDevice2KHR>("xrGetVulkanGraphicsDevice2KHR");
   const auto create_device = function<PFN_xrCreateVulkanDeviceKHR>("xrCreateVulkanDeviceKHR");

@@ -72,7 +72,7 @@ class XrSystem {
   XrSystemId system_ = XR_NULL_SYSTEM_ID;
   std::string runtime_, system_name_;
   std::array<XrViewConfigurationView, 2> eye_views_{};
-  XrGraphicsRequirementsVulkan2KHR requirements_{XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR};
+  XrVersion min_vulkan_ = 0;  ///< the oldest Vulkan the runtime works with
 };
 
 }  // namespace sketchsurf::vk

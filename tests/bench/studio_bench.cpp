@@ -2,13 +2,19 @@
 // and a 100,000-triangle surface in view, idle and while a surfacing job runs in the background;
 // MSAA off and 4x. The frame is the studio's own (HeadlessStudio::frame: input, panel, view
 // update, draw, wait, readback). Also: frames from trigger release to the stroke on screen.
+// Then the headset's frame (HeadsetStudio::step: wait, controller, update, both eyes drawn and
+// handed over) through the test OpenXR runtime of tests/xr, each eye WxH, the same scene in front
+// of its head.
 //
 //   studio_bench [--frames N] [--size WxH] [--device NAME]      (defaults: 120, 1280x720)
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
@@ -57,6 +63,42 @@ void print(const char* what, int msaa, const Times& t) {
   std::printf("%-34s MSAA %d  %4zu frames  median %7.2f ms  p95 %7.2f ms  max %7.2f ms  >100 ms: %d\n", what,
               msaa, t.frames, t.median, t.p95, t.max, t.over_100ms);
   std::fflush(stdout);
+}
+
+/// The headset's frame loop through the test runtime, on the scene moved in front of its head
+/// (eyes at 1.6 m looking down -z): `frames` frames after 5 of warm-up, MSAA off.
+void headset(studio::StudioOptions o, int frames, Sketch sketch, SurfaceResult surface) {
+  if (!std::filesystem::exists(SKETCHSURF_TEST_XR_RUNTIME)) {
+    std::printf("headset: skipped (no test runtime at %s)\n", SKETCHSURF_TEST_XR_RUNTIME);
+    return;
+  }
+  setenv("XR_RUNTIME_JSON", SKETCHSURF_TEST_XR_RUNTIME, 1);
+  setenv("SKETCHSURF_TEST_XR_FRAMES", "1000000", 1);
+  setenv("SKETCHSURF_TEST_XR_SIZE", (std::to_string(o.width) + "x" + std::to_string(o.height)).c_str(), 1);
+  const Eigen::Vector3d ahead(0.0, 1.5, -1.2);
+  for (Stroke& stroke : sketch.strokes)
+    for (auto& p : stroke.points) p += ahead;
+  for (auto v : surface.mesh.vertices()) surface.mesh.point(v) += OpenMesh::Vec3d(ahead.x(), ahead.y(), ahead.z());
+  o.msaa = 1;
+  studio::Log log;
+  log.quiet = true;
+  studio::HeadsetStudio xr(o, log);
+  auto& session = xr.studio().session();
+  for (const Stroke& stroke : sketch.strokes) session.add_stroke(stroke);
+  session.set_result(surface);
+  std::vector<double> ms;
+  for (int i = 0; i < frames + 5; ++i) {
+    const std::size_t before = xr.frames();
+    const auto start = std::chrono::steady_clock::now();
+    if (!xr.step()) break;
+    const double t = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (xr.frames() > before && i >= 5) ms.push_back(t);
+  }
+  std::printf("headset (test OpenXR runtime, 2 eyes of %dx%d):\n", o.width, o.height);
+  print("idle, both eyes", 1, times(ms));
+  xr.request_exit();
+  while (xr.step()) {
+  }
 }
 
 }  // namespace
@@ -125,6 +167,7 @@ int main(int argc, char** argv) {
       std::printf("release to stroke shown: %s\n",
                   s.view().points() > before ? "the same frame" : "LATER than the releasing frame");
     }
+    headset(o, frames, sketch, surface);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "studio_bench: %s\n", e.what());
     return 1;

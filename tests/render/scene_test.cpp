@@ -218,6 +218,34 @@ TEST(Camera, OrbitKeepsDistanceAndTarget) {
   EXPECT_LT((render::orbit(c, 2 * M_PI).eye - c.eye).norm(), 1e-9);
 }
 
+TEST(Camera, EyeFrustumPutsItsEdgesAtThePictureEdges) {
+  // An eye at (1, 2, 3) turned 30 degrees about +y, with an asymmetric field of view (a headset's).
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitY()));
+  const render::Frustum f{-0.8, 0.6, 0.7, -0.75};
+  const render::Camera c = render::eye_camera({1, 2, 3}, turn, f, 0.1, 50.0);
+  const int w = 400, h = 300;
+  // A point on the ray through each edge of the frustum lands on that edge of the picture, at any
+  // depth; the depth maps near -> 0 and far -> 1.
+  const auto at = [&](double tx, double ty, double depth) -> Eigen::Vector3d {
+    return Eigen::Vector3d(1, 2, 3) + turn * (depth * Eigen::Vector3d(tx, ty, -1.0));
+  };
+  for (double depth : {0.1, 2.0, 50.0}) {
+    EXPECT_NEAR(c.project(at(std::tan(f.left), 0, depth), w, h).x(), 0.0, 1e-9);
+    EXPECT_NEAR(c.project(at(std::tan(f.right), 0, depth), w, h).x(), w, 1e-9);
+    EXPECT_NEAR(c.project(at(0, std::tan(f.up), depth), w, h).y(), 0.0, 1e-9) << "up is the top row";
+    EXPECT_NEAR(c.project(at(0, std::tan(f.down), depth), w, h).y(), h, 1e-9);
+  }
+  EXPECT_NEAR(c.project(at(0, 0, 0.1), w, h).z(), 0.0, 1e-9);
+  EXPECT_NEAR(c.project(at(0, 0, 50.0), w, h).z(), 1.0, 1e-9);
+  // A symmetric frustum is the symmetric camera of the same vertical field and aspect.
+  render::Camera sym = render::eye_camera({0, 0, 0}, Eigen::Quaterniond::Identity(), {-0.6, 0.6, 0.5, -0.5}, 0.1, 50.0);
+  render::Camera plain = sym;
+  plain.frustum.reset();
+  plain.fov_y = 2.0 * 0.5 * 180.0 / M_PI;
+  const double aspect = std::tan(0.6) / std::tan(0.5);
+  EXPECT_LT((sym.projection_matrix(1.0) - plain.projection_matrix(aspect)).norm(), 1e-12);
+}
+
 TEST(DeviceChoice, PrefersGpusFallsBackToCpuAndHonoursRequests) {
   using vk::DeviceInfo;
   const DeviceInfo cpu{"llvmpipe (LLVM 15)", VK_PHYSICAL_DEVICE_TYPE_CPU, true};

@@ -1,5 +1,7 @@
 #pragma once
-// The studio's two front ends: one renderer, two targets.
+// The studio's three front ends (offscreen, window, headset): one renderer, three targets.
+
+#include <openxr/openxr.h>
 
 #include <functional>
 #include <string>
@@ -46,9 +48,40 @@ int run_headless(const StudioOptions& options, const Log& log);
 /// --headless or Xvfb when there is no display. Returns the exit code.
 int run_window(const StudioOptions& options, const Log& log);
 
-/// --xr: the studio in a headset through OpenXR: the runtime's Vulkan device, one swapchain per
-/// eye drawn by the same renderer, the controller's samples in place of the mouse's. Without a
-/// runtime or a headset, says what is missing in one line and runs the desktop studio instead
+/// The studio in a headset through OpenXR (--xr): the runtime's Vulkan device, one swapchain per
+/// eye drawn by the same renderer as the other targets, the controller's samples in place of the
+/// mouse's; no panel. What run_xr() runs, and what studio_bench measures.
+class HeadsetStudio {
+ public:
+  /// Throws vk::XrUnavailable (no runtime or no headset: nothing else was started), Error.
+  HeadsetStudio(const StudioOptions& options, const Log& log);
+  ~HeadsetStudio();
+  HeadsetStudio(const HeadsetStudio&) = delete;
+  HeadsetStudio& operator=(const HeadsetStudio&) = delete;
+
+  Studio& studio() { return *studio_; }
+  const vk::Context& context() const;
+  /// Handles the runtime's events and, while the session runs, renders one frame (wait, input,
+  /// update, both eyes, end; its wall time goes to Studio::frame_finished()). False once the
+  /// session is over.
+  bool step();
+  /// Asks the runtime to end the session; step() returns false once it has.
+  void request_exit();
+  /// Frames rendered so far.
+  std::size_t frames() const { return frames_; }
+  std::size_t haptic_ticks() const;
+
+ private:
+  struct Parts;
+  std::unique_ptr<Parts> parts_;
+  std::unique_ptr<Studio> studio_;
+  const Log& log_;
+  std::size_t frames_ = 0;
+  XrTime first_ = 0;
+  std::string profile_;
+};
+
+/// --xr: HeadsetStudio until the session ends. Without a runtime or a headset, says what is missing in one line and runs the desktop studio instead
 /// (the window, or --headless). Ends when the runtime stops the session, on SIGINT/SIGTERM, or
 /// after --frames. Returns the exit code.
 int run_xr(const StudioOptions& options, const Log& log);

@@ -23,59 +23,96 @@ render::Camera eye_camera(const XrView& view, const BoundingBox& drawn) {
                             0.01, far_plane);
 }
 
+std::unique_ptr<vk::XrSystem> make_system(const Log& log) {
+  vk::XrSystemOptions xo;
+  xo.application = "sketchsurf-studio";
+  xo.log = [&log](const std::string& line) { log.info(line); };
+  return std::make_unique<vk::XrSystem>(xo);
+}
+
 }  // namespace
 
-int run_xr(const StudioOptions& options, const Log& log) {
+/// The OpenXR system, the context made through it, the session, the renderer for its eyes and
+/// the controller, in that order of construction.
+struct HeadsetStudio::Parts {
+  Parts(const StudioOptions& options, const Log& log)
+      : system(make_system(log)), context(system->create_context(context_options(options, log))) {}
   std::unique_ptr<vk::XrSystem> system;
+  std::unique_ptr<vk::Context> context;
+  std::unique_ptr<vk::HeadsetSession> headset;
+  std::unique_ptr<render::Renderer> renderer;
+  std::unique_ptr<input::XrController> controller;
+};
+
+HeadsetStudio::HeadsetStudio(const StudioOptions& options, const Log& log)
+    : parts_(std::make_unique<Parts>(options, log)), log_(log) {
+  Parts& p = *parts_;
+  studio_ = std::make_unique<Studio>(options, *p.context, log);
+  p.headset = std::make_unique<vk::HeadsetSession>(*p.system, *p.context, sample_count(options.msaa, *p.context),
+                                                   [&log](const std::string& line) { log.info(line); });
+  p.renderer = std::make_unique<render::Renderer>(*p.context, p.headset->render_pass(), p.headset->samples());
+  p.controller = std::make_unique<input::XrController>(p.system->instance(), p.headset->session());
+  studio_->set_controller(p.controller.get());
+}
+
+HeadsetStudio::~HeadsetStudio() {
+  studio_->set_controller(nullptr);
+  parts_->controller.reset();
+  parts_->renderer.reset();
+  parts_->headset.reset();
+  studio_.reset();  // its scenes live on the context
+  parts_.reset();
+}
+
+const vk::Context& HeadsetStudio::context() const { return *parts_->context; }
+std::size_t HeadsetStudio::haptic_ticks() const { return parts_->controller->haptic_ticks(); }
+void HeadsetStudio::request_exit() { parts_->headset->request_exit(); }
+
+bool HeadsetStudio::step() {
+  Parts& p = *parts_;
+  vk::HeadsetSession& headset = *p.headset;
+  if (!headset.poll_events()) return false;
+  if (!headset.running()) {  // waiting for the runtime (the headset put on, the session READY)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return true;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const vk::HeadsetFrame frame = headset.begin_frame();
+  if (first_ == 0) first_ = frame.display_time;
+  const double now = double(frame.display_time - first_) * 1e-9;
+  p.controller->sync(headset.space(), frame.display_time, now);
+  if (profile_.empty() && !(profile_ = p.controller->profile()).empty()) log_.info("controller: " + profile_);
+  Studio& studio = *studio_;
+  studio.input(now);
+  studio.update();
+  const BoundingBox drawn = studio.view().bounds();
+  headset.end_frame(frame, studio.view_options().background, [&](VkCommandBuffer cmd, std::size_t eye) {
+    const VkExtent2D extent = headset.eye_extent(eye);
+    studio.record(cmd, *p.renderer, eye_camera(frame.views[eye], drawn),
+                  double(extent.width) / double(extent.height), nullptr);
+  });
+  ++frames_;
+  studio.frame_finished(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return true;
+}
+
+int run_xr(const StudioOptions& options, const Log& log) {
+  std::unique_ptr<HeadsetStudio> headset;
   try {
-    vk::XrSystemOptions xo;
-    xo.application = "sketchsurf-studio";
-    xo.log = [&log](const std::string& line) { log.info(line); };
-    system = std::make_unique<vk::XrSystem>(xo);
+    headset = std::make_unique<HeadsetStudio>(options, log);
   } catch (const vk::XrUnavailable& e) {
     log.info(std::string(e.what()) + "; starting the desktop studio");
     return options.headless ? run_headless(options, log) : run_window(options, log);
   }
-  const std::unique_ptr<vk::Context> context = system->create_context(context_options(options, log));
-  Studio studio(options, *context, log);
-  vk::HeadsetSession headset(*system, *context, sample_count(options.msaa, *context),
-                             [&log](const std::string& line) { log.info(line); });
-  const render::Renderer renderer(*context, headset.render_pass(), headset.samples());
-  input::XrController controller(system->instance(), headset.session());
-  studio.set_controller(&controller);
-
+  Studio& studio = headset->studio();
   catch_stop_signals();
-  std::size_t frames = 0;
-  XrTime first = 0;
-  std::string profile;
-  while (headset.poll_events()) {
-    if (stop_requested() || (options.frames && studio.done(frames))) headset.request_exit();
-    if (!headset.running()) {  // waiting for the runtime (the headset put on, the session READY)
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      continue;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    const vk::HeadsetFrame frame = headset.begin_frame();
-    if (first == 0) first = frame.display_time;
-    const double now = double(frame.display_time - first) * 1e-9;
-    controller.sync(headset.space(), frame.display_time, now);
-    if (profile.empty() && !(profile = controller.profile()).empty()) log.info("controller: " + profile);
-    studio.input(now);
-    studio.update();
-    const BoundingBox drawn = studio.view().bounds();
-    headset.end_frame(frame, studio.view_options().background, [&](VkCommandBuffer cmd, std::size_t eye) {
-      const VkExtent2D extent = headset.eye_extent(eye);
-      studio.record(cmd, renderer, eye_camera(frame.views[eye], drawn),
-                    double(extent.width) / double(extent.height), nullptr);
-    });
-    ++frames;
-    studio.frame_finished(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
+  while (headset->step())
+    if (stop_requested() || (options.frames && studio.done(headset->frames()))) headset->request_exit();
   studio.finish();
-  log.info("headset: " + summary(studio.stats()) + ", " + std::to_string(controller.haptic_ticks()) +
+  log.info("headset: " + summary(studio.stats()) + ", " + std::to_string(headset->haptic_ticks()) +
            " haptic ticks");
-  if (context->validation_enabled())
-    log.info("validation: " + std::to_string(context->validation_messages().size()) + " messages");
+  if (headset->context().validation_enabled())
+    log.info("validation: " + std::to_string(headset->context().validation_messages().size()) + " messages");
   return 0;
 }
 
