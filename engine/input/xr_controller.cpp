@@ -51,32 +51,51 @@ XrController::XrController(XrInstance instance, XrSession session, const XrContr
     undo_ = make_action("undo", "Undo", XR_ACTION_TYPE_BOOLEAN_INPUT);
     redo_ = make_action("redo", "Redo", XR_ACTION_TYPE_BOOLEAN_INPUT);
     menu_ = make_action("menu", "Menu", XR_ACTION_TYPE_BOOLEAN_INPUT);
-    pad_click_ = make_action("pad_click", "Trackpad click (undo left, redo right)", XR_ACTION_TYPE_BOOLEAN_INPUT);
+    pad_click_ =
+        make_action("pad_click", "Trackpad click (undo left, redo right)", XR_ACTION_TYPE_BOOLEAN_INPUT);
     pad_x_ = make_action("pad_x", "Trackpad x", XR_ACTION_TYPE_FLOAT_INPUT);
     haptic_ = make_action("stroke_tick", "Stroke start tick", XR_ACTION_TYPE_VIBRATION_OUTPUT);
 
     const bool right = options.hand == Hand::Right;
     const std::vector<Profile> profiles = {
         {"/interaction_profiles/khr/simple_controller",
-         {{aim_, "/input/aim/pose"}, {grip_, "/input/grip/pose"}, {trigger_, "/input/select/click"},
-          {menu_, "/input/menu/click"}, {haptic_, "/output/haptic"}}},
+         {{aim_, "/input/aim/pose"},
+          {grip_, "/input/grip/pose"},
+          {trigger_, "/input/select/click"},
+          {menu_, "/input/menu/click"},
+          {haptic_, "/output/haptic"}}},
         {"/interaction_profiles/oculus/touch_controller",
-         {{aim_, "/input/aim/pose"}, {grip_, "/input/grip/pose"}, {trigger_, "/input/trigger/value"},
-          {squeeze_, "/input/squeeze/value"}, {undo_, right ? "/input/a/click" : "/input/x/click"},
-          {redo_, right ? "/input/b/click" : "/input/y/click"}, {menu_, "/input/thumbstick/click"},
+         {{aim_, "/input/aim/pose"},
+          {grip_, "/input/grip/pose"},
+          {trigger_, "/input/trigger/value"},
+          {squeeze_, "/input/squeeze/value"},
+          {undo_, right ? "/input/a/click" : "/input/x/click"},
+          {redo_, right ? "/input/b/click" : "/input/y/click"},
+          {menu_, "/input/thumbstick/click"},
           {haptic_, "/output/haptic"}}},
         {"/interaction_profiles/valve/index_controller",
-         {{aim_, "/input/aim/pose"}, {grip_, "/input/grip/pose"}, {trigger_, "/input/trigger/value"},
-          {squeeze_, "/input/squeeze/value"}, {undo_, "/input/a/click"}, {redo_, "/input/b/click"},
-          {menu_, "/input/thumbstick/click"}, {haptic_, "/output/haptic"}}},
+         {{aim_, "/input/aim/pose"},
+          {grip_, "/input/grip/pose"},
+          {trigger_, "/input/trigger/value"},
+          {squeeze_, "/input/squeeze/value"},
+          {undo_, "/input/a/click"},
+          {redo_, "/input/b/click"},
+          {menu_, "/input/thumbstick/click"},
+          {haptic_, "/output/haptic"}}},
         {"/interaction_profiles/htc/vive_controller",
-         {{aim_, "/input/aim/pose"}, {grip_, "/input/grip/pose"}, {trigger_, "/input/trigger/value"},
-          {squeeze_, "/input/squeeze/click"}, {menu_, "/input/menu/click"},
-          {pad_click_, "/input/trackpad/click"}, {pad_x_, "/input/trackpad/x"}, {haptic_, "/output/haptic"}}},
+         {{aim_, "/input/aim/pose"},
+          {grip_, "/input/grip/pose"},
+          {trigger_, "/input/trigger/value"},
+          {squeeze_, "/input/squeeze/click"},
+          {menu_, "/input/menu/click"},
+          {pad_click_, "/input/trackpad/click"},
+          {pad_x_, "/input/trackpad/x"},
+          {haptic_, "/output/haptic"}}},
     };
     for (const Profile& p : profiles) {
       std::vector<XrActionSuggestedBinding> suggested;
-      for (const auto& [action, input] : p.bindings) suggested.push_back({action, to_path(instance, hand + input)});
+      for (const auto& [action, input] : p.bindings)
+        suggested.push_back({action, to_path(instance, hand + input)});
       XrInteractionProfileSuggestedBinding info{XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING};
       info.interactionProfile = to_path(instance, p.path);
       info.countSuggestedBindings = std::uint32_t(suggested.size());
@@ -136,7 +155,8 @@ void XrController::sync(XrSpace base, XrTime display_time, double time_s) {
     if (!s.isActive) return false;
     XrSpaceLocation location{XR_TYPE_SPACE_LOCATION};
     XR_CHECK(xrLocateSpace(space, base, display_time, &location));
-    const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
+    const XrSpaceLocationFlags needed =
+        XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
     *pose = location.pose;
     return (location.locationFlags & needed) == needed;
   };

@@ -19,9 +19,9 @@ namespace sketchsurf::input {
 enum class Hand { Left, Right };
 
 struct XrControllerOptions {
-  Hand hand = Hand::Right;           ///< the drawing hand
-  XrMappingOptions mapping;          ///< reference space to sketch, trigger thresholds
-  float haptic_amplitude = 0.5f;     ///< of the tick on stroke start, in [0, 1]
+  Hand hand = Hand::Right;                  ///< the drawing hand
+  XrMappingOptions mapping;                 ///< reference space to sketch, trigger thresholds
+  float haptic_amplitude = 0.5f;            ///< of the tick on stroke start, in [0, 1]
   XrDuration haptic_duration = 20'000'000;  ///< nanoseconds
 };
 
@@ -58,9 +58,8 @@ class XrController : public Controller6DoF {
   XrPath hand_ = XR_NULL_PATH;
   XrActionSet set_ = XR_NULL_HANDLE;
   XrAction aim_ = XR_NULL_HANDLE, grip_ = XR_NULL_HANDLE, trigger_ = XR_NULL_HANDLE,
-           squeeze_ = XR_NULL_HANDLE, undo_ = XR_NULL_HANDLE, redo_ = XR_NULL_HANDLE,
-           menu_ = XR_NULL_HANDLE, pad_click_ = XR_NULL_HANDLE, pad_x_ = XR_NULL_HANDLE,
-           haptic_ = XR_NULL_HANDLE;
+           squeeze_ = XR_NULL_HANDLE, undo_ = XR_NULL_HANDLE, redo_ = XR_NULL_HANDLE, menu_ = XR_NULL_HANDLE,
+           pad_click_ = XR_NULL_HANDLE, pad_x_ = XR_NULL_HANDLE, haptic_ = XR_NULL_HANDLE;
   XrSpace aim_space_ = XR_NULL_HANDLE, grip_space_ = XR_NULL_HANDLE;
   ControllerState state_;
   std::vector<ControllerState> queue_;

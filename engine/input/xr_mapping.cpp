@@ -28,8 +28,8 @@ Eigen::Quaterniond to_quaternion(const XrQuaternionf& q) {
 
 Pose to_pose(const XrPosef& pose, const XrMappingOptions& options) {
   Pose out;
-  out.position = options.offset +
-                 options.scale * Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  out.position =
+      options.offset + options.scale * Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
   out.orientation = to_quaternion(pose.orientation);
   return out;
 }

@@ -18,27 +18,27 @@ namespace sketchsurf::input {
 
 /// One controller as the runtime reports it for one frame.
 struct XrControllerSample {
-  double time_s = 0.0;           ///< seconds since the session began
-  XrPosef aim{{0, 0, 0, 1}, {0, 0, 0}};   ///< aim pose in the reference space
-  bool aim_valid = false;        ///< position and orientation of `aim` are valid (tracked or inferred)
+  double time_s = 0.0;                   ///< seconds since the session began
+  XrPosef aim{{0, 0, 0, 1}, {0, 0, 0}};  ///< aim pose in the reference space
+  bool aim_valid = false;  ///< position and orientation of `aim` are valid (tracked or inferred)
   XrPosef grip{{0, 0, 0, 1}, {0, 0, 0}};  ///< grip pose in the reference space
-  bool grip_valid = false;       ///< likewise for `grip`
-  float trigger = 0.0f;          ///< the trigger's value in [0, 1] (a click reads as 0 or 1)
-  bool squeeze = false;          ///< grip button or squeeze past its click: Grab
-  bool undo = false;             ///< A (Touch, Index)
-  bool redo = false;             ///< B (Touch, Index)
-  bool menu = false;             ///< menu button
-  bool pad_click = false;        ///< trackpad pressed (Vive): left half undo, right half redo
-  float pad_x = 0.0f;            ///< trackpad x in [-1, 1] (Vive), right positive
+  bool grip_valid = false;                ///< likewise for `grip`
+  float trigger = 0.0f;                   ///< the trigger's value in [0, 1] (a click reads as 0 or 1)
+  bool squeeze = false;                   ///< grip button or squeeze past its click: Grab
+  bool undo = false;                      ///< A (Touch, Index)
+  bool redo = false;                      ///< B (Touch, Index)
+  bool menu = false;                      ///< menu button
+  bool pad_click = false;                 ///< trackpad pressed (Vive): left half undo, right half redo
+  float pad_x = 0.0f;                     ///< trackpad x in [-1, 1] (Vive), right positive
 };
 
 /// How the reference space maps to the sketch and when the trigger counts as pressed.
 struct XrMappingOptions {
-  double scale = 1.0;                                       ///< sketch units per metre, > 0
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero();         ///< sketch position of the space's origin
-  float press = 0.5f;    ///< trigger value at which Draw goes down, in (0, 1]
-  float release = 0.4f;  ///< value below which a held Draw comes up, in [0, press]: the gap keeps
-                         ///< a trigger resting near one threshold from breaking a stroke
+  double scale = 1.0;                                ///< sketch units per metre, > 0
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  ///< sketch position of the space's origin
+  float press = 0.5f;                                ///< trigger value at which Draw goes down, in (0, 1]
+  float release = 0.4f;        ///< value below which a held Draw comes up, in [0, press]: the gap keeps
+                               ///< a trigger resting near one threshold from breaking a stroke
   float pad_dead_zone = 0.2f;  ///< |pad_x| below this: a trackpad click is neither undo nor redo
 
   /// False (with the reason in `why`) when a value is out of its range or not finite.

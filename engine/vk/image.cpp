@@ -52,19 +52,4 @@ Image::Image(const Context& context, const ImageDesc& desc, const char* name) : 
   }
 }
 
-void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
-                VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
-                VkPipelineStageFlags dst_stage) {
-  VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  barrier.srcAccessMask = src_access;
-  barrier.dstAccessMask = dst_access;
-  barrier.oldLayout = from;
-  barrier.newLayout = to;
-  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
-}
-
 }  // namespace sketchsurf::vk

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 
+#include "engine/vk/commands.h"
 #include "engine/vk/context.h"
 
 namespace sketchsurf::vk {
@@ -41,9 +42,5 @@ class Image {
   std::byte* mapped_ = nullptr;
 };
 
-/// Records a pipeline barrier moving a whole single-mip colour image between layouts.
-void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
-                VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
-                VkPipelineStageFlags dst_stage);
 
 }  // namespace sketchsurf::vk

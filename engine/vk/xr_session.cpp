@@ -54,7 +54,10 @@ struct HeadsetSession::Eye {
 
 HeadsetSession::HeadsetSession(const XrSystem& system, const Context& context, VkSampleCountFlagBits samples,
                                std::function<void(const std::string&)> log)
-    : system_(&system), context_(&context), log_(std::move(log)), samples_(context.supported_samples(samples)) {
+    : system_(&system),
+      context_(&context),
+      log_(std::move(log)),
+      samples_(context.supported_samples(samples)) {
   XrGraphicsBindingVulkan2KHR binding{XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR};
   binding.instance = context.instance();
   binding.physicalDevice = context.physical_device();
@@ -83,8 +86,10 @@ HeadsetSession::HeadsetSession(const XrSystem& system, const Context& context, V
     VkSubpassDependency dep{};
     dep.srcSubpass = VK_SUBPASS_EXTERNAL;
     dep.dstSubpass = 0;
-    dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-    dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
+    dep.srcStageMask =
+        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    dep.dstStageMask =
+        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
     dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     // OpenXR hands swapchain images back to the runtime in COLOR_ATTACHMENT_OPTIMAL.
@@ -111,16 +116,18 @@ HeadsetSession::HeadsetSession(const XrSystem& system, const Context& context, V
       XR_CHECK(xrEnumerateSwapchainImages(eye->swapchain, n, &n,
                                           reinterpret_cast<XrSwapchainImageBaseHeader*>(eye->images.data())));
       if (msaa)
-        eye->color_msaa = Image(context,
-                                {eye->extent, view_format_,
-                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT,
-                                 samples_, VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_ASPECT_COLOR_BIT, false},
-                                "headset colour (msaa)");
-      eye->depth = Image(context,
-                         {eye->extent, depth_format,
-                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT,
-                          samples_, VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_ASPECT_DEPTH_BIT, false},
-                         "headset depth");
+        eye->color_msaa =
+            Image(context,
+                  {eye->extent, view_format_,
+                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT, samples_,
+                   VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_ASPECT_COLOR_BIT, false},
+                  "headset colour (msaa)");
+      eye->depth =
+          Image(context,
+                {eye->extent, depth_format,
+                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT,
+                 samples_, VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_ASPECT_DEPTH_BIT, false},
+                "headset depth");
       for (const auto& image : eye->images) {
         VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         view_info.image = image.image;
@@ -134,7 +141,8 @@ HeadsetSession::HeadsetSession(const XrSystem& system, const Context& context, V
         attachments.push_back(msaa ? eye->color_msaa.view() : view);
         attachments.push_back(eye->depth.view());
         if (msaa) attachments.push_back(view);
-        eye->framebuffers.push_back(create_framebuffer(context, render_pass_.get(), eye->extent, attachments));
+        eye->framebuffers.push_back(
+            create_framebuffer(context, render_pass_.get(), eye->extent, attachments));
       }
       eyes_.push_back(std::move(eye));
     }
@@ -167,20 +175,6 @@ void HeadsetSession::log(const std::string& line) const {
   if (log_) log_(line);
 }
 
-const char* HeadsetSession::state_name(XrSessionState state) {
-  switch (state) {
-    case XR_SESSION_STATE_IDLE: return "IDLE";
-    case XR_SESSION_STATE_READY: return "READY";
-    case XR_SESSION_STATE_SYNCHRONIZED: return "SYNCHRONIZED";
-    case XR_SESSION_STATE_VISIBLE: return "VISIBLE";
-    case XR_SESSION_STATE_FOCUSED: return "FOCUSED";
-    case XR_SESSION_STATE_STOPPING: return "STOPPING";
-    case XR_SESSION_STATE_LOSS_PENDING: return "LOSS_PENDING";
-    case XR_SESSION_STATE_EXITING: return "EXITING";
-    default: return "UNKNOWN";
-  }
-}
-
 bool HeadsetSession::poll_events() {
   if (exit_requested_ && !running_) return false;
   for (;;) {
@@ -195,7 +189,7 @@ bool HeadsetSession::poll_events() {
     if (event.type != XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) continue;
     const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
     state_ = changed.state;
-    log(std::string("headset session ") + state_name(state_));
+    log("headset session " + xr_state_name(state_));
     switch (state_) {
       case XR_SESSION_STATE_READY: {
         XrSessionBeginInfo begin{XR_TYPE_SESSION_BEGIN_INFO};
@@ -210,8 +204,10 @@ bool HeadsetSession::poll_events() {
         if (exit_requested_) return false;
         break;
       case XR_SESSION_STATE_EXITING:
-      case XR_SESSION_STATE_LOSS_PENDING: return false;
-      default: break;
+      case XR_SESSION_STATE_LOSS_PENDING:
+        return false;
+      default:
+        break;
     }
   }
 }
@@ -269,14 +265,16 @@ void HeadsetSession::end_frame(const HeadsetFrame& frame, const std::array<float
       projected[e].pose = frame.views[e].pose;
       projected[e].fov = frame.views[e].fov;
       projected[e].subImage.swapchain = eye.swapchain;
-      projected[e].subImage.imageRect = {{0, 0}, {std::int32_t(eye.extent.width), std::int32_t(eye.extent.height)}};
+      projected[e].subImage.imageRect = {{0, 0},
+                                         {std::int32_t(eye.extent.width), std::int32_t(eye.extent.height)}};
     }
   }
   XrCompositionLayerProjection layer{XR_TYPE_COMPOSITION_LAYER_PROJECTION};
   layer.space = space_;
   layer.viewCount = 2;
   layer.views = projected.data();
-  const XrCompositionLayerBaseHeader* layers[] = {reinterpret_cast<const XrCompositionLayerBaseHeader*>(&layer)};
+  const XrCompositionLayerBaseHeader* layers[] = {
+      reinterpret_cast<const XrCompositionLayerBaseHeader*>(&layer)};
   XrFrameEndInfo end{XR_TYPE_FRAME_END_INFO};
   end.displayTime = frame.display_time;
   end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;

@@ -21,10 +21,10 @@ namespace sketchsurf::vk {
 
 /// One frame of the headset: when it will be shown and where the eyes will be.
 struct HeadsetFrame {
-  XrTime display_time = 0;                 ///< predicted display time
-  bool render = false;                     ///< the runtime wants the eyes rendered
-  std::array<XrView, 2> views{};           ///< left, right: pose in the reference space and fov
-  bool views_valid = false;                ///< the eye poses are known
+  XrTime display_time = 0;        ///< predicted display time
+  bool render = false;            ///< the runtime wants the eyes rendered
+  std::array<XrView, 2> views{};  ///< left, right: pose in the reference space and fov
+  bool views_valid = false;       ///< the eye poses are known
 };
 
 class HeadsetSession {
@@ -61,9 +61,6 @@ class HeadsetSession {
   /// and waits, releases the image; then ends the frame with a projection layer of both eyes.
   void end_frame(const HeadsetFrame& frame, const std::array<float, 4>& background,
                  const std::function<void(VkCommandBuffer, std::size_t)>& record);
-
-  /// "IDLE", "READY", "FOCUSED", ...
-  static const char* state_name(XrSessionState state);
 
  private:
   struct Eye;

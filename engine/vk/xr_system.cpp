@@ -91,8 +91,8 @@ XrSystem::XrSystem(const XrSystemOptions& options) : options_(options) {
     get.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
     const XrResult found = xrGetSystem(instance_, &get, &system_);
     if (found == XR_ERROR_FORM_FACTOR_UNAVAILABLE || found == XR_ERROR_FORM_FACTOR_UNSUPPORTED)
-      throw XrUnavailable("no headset: the OpenXR runtime '" + runtime_ +
-                          "' sees no head-mounted display (" + xr_result_name(found) + ")");
+      throw XrUnavailable("no headset: the OpenXR runtime '" + runtime_ + "' sees no head-mounted display (" +
+                          xr_result_name(found) + ")");
     XR_CHECK(found);
     XrSystemProperties system_props{XR_TYPE_SYSTEM_PROPERTIES};
     XR_CHECK(xrGetSystemProperties(instance_, system_, &system_props));
@@ -136,8 +136,8 @@ void XrSystem::log(const std::string& line) const {
 std::unique_ptr<Context> XrSystem::create_context(ContextOptions options) const {
   // The context asks for Vulkan 1.1; a runtime that needs a newer one says so here.
   if (min_vulkan_ > XR_MAKE_VERSION(1, 1, 0))
-    throw XrUnavailable("the OpenXR runtime '" + runtime_ + "' needs Vulkan " +
-                        version_text(min_vulkan_) + "; sketchsurf uses 1.1");
+    throw XrUnavailable("the OpenXR runtime '" + runtime_ + "' needs Vulkan " + version_text(min_vulkan_) +
+                        "; sketchsurf uses 1.1");
   const auto create_instance = function<PFN_xrCreateVulkanInstanceKHR>("xrCreateVulkanInstanceKHR");
   const auto physical_device = function<PFN_xrGetVulkanGraphicsDevice2KHR>("xrGetVulkanGraphicsDevice2KHR");
   const auto create_device = function<PFN_xrCreateVulkanDeviceKHR>("xrCreateVulkanDeviceKHR");

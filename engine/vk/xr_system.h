@@ -34,8 +34,8 @@ class XrUnavailable : public Error {
 std::optional<std::filesystem::path> find_runtime_manifest(std::string* why);
 
 struct XrSystemOptions {
-  std::string application = "sketchsurf";         ///< the application name the runtime shows
-  std::function<void(const std::string&)> log;    ///< notable events, one line each; may be empty
+  std::string application = "sketchsurf";       ///< the application name the runtime shows
+  std::function<void(const std::string&)> log;  ///< notable events, one line each; may be empty
 };
 
 class XrSystem {

@@ -44,6 +44,8 @@
 #include <vector>
 
 #include "engine/input/track.h"
+#include "engine/vk/commands.h"
+#include "engine/vk/xr_check.h"
 
 // The loader's negotiation structs (the OpenXR SDK's loader_interfaces.h, which Debian does not
 // ship), version 1.
@@ -77,6 +79,7 @@ namespace {
 
 using sketchsurf::input::Button;
 using sketchsurf::input::ControllerState;
+using sketchsurf::vk::transition;
 
 constexpr XrTime kPeriod = 15'625'000;  // 1/64 s
 constexpr XrTime kStart = 1'000'000'000;
@@ -98,7 +101,8 @@ Eigen::Isometry3d to_iso(const XrPosef& p) {
 XrPosef to_pose(const Eigen::Isometry3d& t) {
   const Eigen::Quaterniond q(t.linear());
   const Eigen::Vector3d p = t.translation();
-  return {{float(q.x()), float(q.y()), float(q.z()), float(q.w())}, {float(p.x()), float(p.y()), float(p.z())}};
+  return {{float(q.x()), float(q.y()), float(q.z()), float(q.w())},
+          {float(p.x()), float(p.y()), float(p.z())}};
 }
 
 struct Action;
@@ -300,20 +304,6 @@ void submit(Record record) {
   vkDestroyCommandPool(rt().device, pool, nullptr);
 }
 
-void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src,
-             VkAccessFlags dst, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
-  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcAccessMask = src;
-  b.dstAccessMask = dst;
-  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
-}
-
 /// Copies the released image of `sc` to the host and writes it as a binary PPM (RGB).
 void write_image(const Swapchain& sc, const std::filesystem::path& file) {
   const VkImage image = sc.images.at(*sc.released).image;
@@ -327,22 +317,14 @@ void write_image(const Swapchain& sc, const std::filesystem::path& file) {
   vkGetBufferMemoryRequirements(rt().device, buffer, &req);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex =
-      memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  alloc.memoryTypeIndex = memory_type(
+      req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   VkDeviceMemory memory = VK_NULL_HANDLE;
   vkAllocateMemory(rt().device, &alloc, nullptr, &memory);
   vkBindBufferMemory(rt().device, buffer, memory, 0);
   submit([&](VkCommandBuffer cmd) {
-    barrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-            VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-            VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {sc.width, sc.height, 1};
-    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
-    barrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-            VK_ACCESS_TRANSFER_READ_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-            VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
+    sketchsurf::vk::record_readback(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {sc.width, sc.height},
+                                    buffer, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
   });
   void* mapped = nullptr;
   vkMapMemory(rt().device, memory, 0, size, 0, &mapped);
@@ -361,23 +343,10 @@ void write_image(const Swapchain& sc, const std::filesystem::path& file) {
   rt().images_written.push_back(file.filename().string());
 }
 
-const char* state_text(XrSessionState s) {
-  switch (s) {
-    case XR_SESSION_STATE_IDLE: return "IDLE";
-    case XR_SESSION_STATE_READY: return "READY";
-    case XR_SESSION_STATE_SYNCHRONIZED: return "SYNCHRONIZED";
-    case XR_SESSION_STATE_VISIBLE: return "VISIBLE";
-    case XR_SESSION_STATE_FOCUSED: return "FOCUSED";
-    case XR_SESSION_STATE_STOPPING: return "STOPPING";
-    case XR_SESSION_STATE_EXITING: return "EXITING";
-    default: return "UNKNOWN";
-  }
-}
-
 void write_report() {
   if (rt().out.empty()) return;
   nlohmann::json j;
-  for (auto s : rt().states) j["states"].push_back(state_text(s));
+  for (auto s : rt().states) j["states"].push_back(sketchsurf::vk::xr_state_name(s));
   j["frames_waited"] = rt().frames_waited;
   j["frames_ended"] = rt().frames_ended;
   j["frames_with_layers"] = rt().frames_with_layers;
@@ -405,8 +374,8 @@ XR_FN(EnumerateApiLayerProperties)(uint32_t, uint32_t* count, XrApiLayerProperti
   return XR_SUCCESS;
 }
 
-XR_FN(EnumerateInstanceExtensionProperties)(const char* layer, uint32_t capacity, uint32_t* count,
-                                            XrExtensionProperties* props) {
+XR_FN(EnumerateInstanceExtensionProperties)
+(const char* layer, uint32_t capacity, uint32_t* count, XrExtensionProperties* props) {
   if (layer) return XR_ERROR_API_LAYER_NOT_PRESENT;
   *count = 1;
   if (capacity == 0) return XR_SUCCESS;
@@ -429,7 +398,8 @@ XR_FN(CreateInstance)(const XrInstanceCreateInfo* info, XrInstance* instance) {
   if (const std::string size = env("SKETCHSURF_TEST_XR_SIZE"); !size.empty())
     std::sscanf(size.c_str(), "%ux%u", &r.width, &r.height);
   try {
-    if (!env("SKETCHSURF_TEST_XR_TRACK").empty()) r.track = sketchsurf::input::read_track(env("SKETCHSURF_TEST_XR_TRACK"));
+    if (!env("SKETCHSURF_TEST_XR_TRACK").empty())
+      r.track = sketchsurf::input::read_track(env("SKETCHSURF_TEST_XR_TRACK"));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "test runtime: %s\n", e.what());
     delete g_runtime;
@@ -437,7 +407,8 @@ XR_FN(CreateInstance)(const XrInstanceCreateInfo* info, XrInstance* instance) {
     return XR_ERROR_RUNTIME_FAILURE;
   }
   r.stop_frame = std::int64_t(r.track.duration() * 64.0 + 0.5) + 16;
-  if (!env("SKETCHSURF_TEST_XR_FRAMES").empty()) r.stop_frame = std::atoll(env("SKETCHSURF_TEST_XR_FRAMES").c_str());
+  if (!env("SKETCHSURF_TEST_XR_FRAMES").empty())
+    r.stop_frame = std::atoll(env("SKETCHSURF_TEST_XR_FRAMES").c_str());
   *instance = give<XrInstance>(g_runtime);
   return XR_SUCCESS;
 }
@@ -479,7 +450,8 @@ XR_FN(StructureTypeToString)(XrInstance, XrStructureType value, char buffer[XR_M
 constexpr XrSystemId kSystem = 1;
 
 XR_FN(GetSystem)(XrInstance, const XrSystemGetInfo* info, XrSystemId* system) {
-  if (info->formFactor != XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY || rt().no_hmd) return XR_ERROR_FORM_FACTOR_UNAVAILABLE;
+  if (info->formFactor != XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY || rt().no_hmd)
+    return XR_ERROR_FORM_FACTOR_UNAVAILABLE;
   *system = kSystem;
   return XR_SUCCESS;
 }
@@ -494,30 +466,32 @@ XR_FN(GetSystemProperties)(XrInstance, XrSystemId system, XrSystemProperties* pr
   return XR_SUCCESS;
 }
 
-XR_FN(EnumerateEnvironmentBlendModes)(XrInstance, XrSystemId, XrViewConfigurationType, uint32_t capacity,
-                                      uint32_t* count, XrEnvironmentBlendMode* modes) {
+XR_FN(EnumerateEnvironmentBlendModes)
+(XrInstance, XrSystemId, XrViewConfigurationType, uint32_t capacity, uint32_t* count,
+ XrEnvironmentBlendMode* modes) {
   *count = 1;
   if (capacity >= 1) modes[0] = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
   return XR_SUCCESS;
 }
 
-XR_FN(EnumerateViewConfigurations)(XrInstance, XrSystemId, uint32_t capacity, uint32_t* count,
-                                   XrViewConfigurationType* types) {
+XR_FN(EnumerateViewConfigurations)
+(XrInstance, XrSystemId, uint32_t capacity, uint32_t* count, XrViewConfigurationType* types) {
   *count = 1;
   if (capacity >= 1) types[0] = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
   return XR_SUCCESS;
 }
 
-XR_FN(GetViewConfigurationProperties)(XrInstance, XrSystemId, XrViewConfigurationType type,
-                                      XrViewConfigurationProperties* props) {
+XR_FN(GetViewConfigurationProperties)
+(XrInstance, XrSystemId, XrViewConfigurationType type, XrViewConfigurationProperties* props) {
   if (type != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO) return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
   props->viewConfigurationType = type;
   props->fovMutable = XR_FALSE;
   return XR_SUCCESS;
 }
 
-XR_FN(EnumerateViewConfigurationViews)(XrInstance, XrSystemId, XrViewConfigurationType type, uint32_t capacity,
-                                       uint32_t* count, XrViewConfigurationView* views) {
+XR_FN(EnumerateViewConfigurationViews)
+(XrInstance, XrSystemId, XrViewConfigurationType type, uint32_t capacity, uint32_t* count,
+ XrViewConfigurationView* views) {
   if (type != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO) return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
   *count = 2;
   if (capacity == 0) return XR_SUCCESS;
@@ -540,8 +514,8 @@ XR_FN(GetVulkanGraphicsRequirements2KHR)(XrInstance, XrSystemId, XrGraphicsRequi
   return XR_SUCCESS;
 }
 
-XR_FN(CreateVulkanInstanceKHR)(XrInstance, const XrVulkanInstanceCreateInfoKHR* info, VkInstance* instance,
-                               VkResult* result) {
+XR_FN(CreateVulkanInstanceKHR)
+(XrInstance, const XrVulkanInstanceCreateInfoKHR* info, VkInstance* instance, VkResult* result) {
   rt().gipa = info->pfnGetInstanceProcAddr;
   const auto create = reinterpret_cast<PFN_vkCreateInstance>(rt().gipa(VK_NULL_HANDLE, "vkCreateInstance"));
   *result = create(info->vulkanCreateInfo, info->vulkanAllocator, instance);
@@ -549,8 +523,8 @@ XR_FN(CreateVulkanInstanceKHR)(XrInstance, const XrVulkanInstanceCreateInfoKHR* 
   return XR_SUCCESS;
 }
 
-XR_FN(GetVulkanGraphicsDevice2KHR)(XrInstance, const XrVulkanGraphicsDeviceGetInfoKHR* info,
-                                   VkPhysicalDevice* device) {
+XR_FN(GetVulkanGraphicsDevice2KHR)
+(XrInstance, const XrVulkanGraphicsDeviceGetInfoKHR* info, VkPhysicalDevice* device) {
   rt().vk_instance = info->vulkanInstance;
   const auto enumerate = instance_function<PFN_vkEnumeratePhysicalDevices>("vkEnumeratePhysicalDevices");
   std::uint32_t count = 0;
@@ -562,8 +536,8 @@ XR_FN(GetVulkanGraphicsDevice2KHR)(XrInstance, const XrVulkanGraphicsDeviceGetIn
   return XR_SUCCESS;
 }
 
-XR_FN(CreateVulkanDeviceKHR)(XrInstance, const XrVulkanDeviceCreateInfoKHR* info, VkDevice* device,
-                             VkResult* result) {
+XR_FN(CreateVulkanDeviceKHR)
+(XrInstance, const XrVulkanDeviceCreateInfoKHR* info, VkDevice* device, VkResult* result) {
   const auto create = instance_function<PFN_vkCreateDevice>("vkCreateDevice");
   *result = create(info->vulkanPhysicalDevice, info->vulkanCreateInfo, info->vulkanAllocator, device);
   return XR_SUCCESS;
@@ -572,7 +546,8 @@ XR_FN(CreateVulkanDeviceKHR)(XrInstance, const XrVulkanDeviceCreateInfoKHR* info
 XR_FN(CreateSession)(XrInstance, const XrSessionCreateInfo* info, XrSession* session) {
   if (rt().session) return XR_ERROR_LIMIT_REACHED;
   const auto* binding = static_cast<const XrGraphicsBindingVulkan2KHR*>(info->next);
-  if (!binding || binding->type != XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+  if (!binding || binding->type != XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR)
+    return XR_ERROR_GRAPHICS_DEVICE_INVALID;
   rt().physical = binding->physicalDevice;
   rt().device = binding->device;
   rt().queue_family = binding->queueFamilyIndex;
@@ -674,7 +649,8 @@ XR_FN(LocateSpace)(XrSpace space, XrSpace base, XrTime time, XrSpaceLocation* lo
   if (ps && pb) {
     location->pose = to_pose(pb->inverse() * *ps);
     location->locationFlags = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT |
-                              XR_SPACE_LOCATION_POSITION_TRACKED_BIT | XR_SPACE_LOCATION_ORIENTATION_TRACKED_BIT;
+                              XR_SPACE_LOCATION_POSITION_TRACKED_BIT |
+                              XR_SPACE_LOCATION_ORIENTATION_TRACKED_BIT;
   }
   return XR_SUCCESS;
 }
@@ -703,7 +679,8 @@ XR_FN(CreateSwapchain)(XrSession, const XrSwapchainCreateInfo* info, XrSwapchain
   sc->width = info->width;
   sc->height = info->height;
   VkImageCreateInfo image_info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  image_info.flags = (info->usageFlags & XR_SWAPCHAIN_USAGE_MUTABLE_FORMAT_BIT) ? VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT : 0;
+  image_info.flags =
+      (info->usageFlags & XR_SWAPCHAIN_USAGE_MUTABLE_FORMAT_BIT) ? VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT : 0;
   image_info.imageType = VK_IMAGE_TYPE_2D;
   image_info.format = sc->format;
   image_info.extent = {info->width, info->height, 1};
@@ -716,7 +693,8 @@ XR_FN(CreateSwapchain)(XrSession, const XrSwapchainCreateInfo* info, XrSwapchain
   image_info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   for (int i = 0; i < 3; ++i) {
     SwapImage img;
-    if (vkCreateImage(rt().device, &image_info, nullptr, &img.image) != VK_SUCCESS) return XR_ERROR_RUNTIME_FAILURE;
+    if (vkCreateImage(rt().device, &image_info, nullptr, &img.image) != VK_SUCCESS)
+      return XR_ERROR_RUNTIME_FAILURE;
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(rt().device, img.image, &req);
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -729,9 +707,9 @@ XR_FN(CreateSwapchain)(XrSession, const XrSwapchainCreateInfo* info, XrSwapchain
   // The application receives every image in COLOR_ATTACHMENT_OPTIMAL.
   submit([&](VkCommandBuffer cmd) {
     for (const auto& img : sc->images)
-      barrier(cmd, img.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, 0,
-              VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
-              VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
+      transition(cmd, img.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, 0,
+                 VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                 VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
   });
   *swapchain = give<XrSwapchain>(sc.release());
   return XR_SUCCESS;
@@ -750,8 +728,8 @@ XR_FN(DestroySwapchain)(XrSwapchain swapchain) {
   return XR_SUCCESS;
 }
 
-XR_FN(EnumerateSwapchainImages)(XrSwapchain swapchain, uint32_t capacity, uint32_t* count,
-                                XrSwapchainImageBaseHeader* images) {
+XR_FN(EnumerateSwapchainImages)
+(XrSwapchain swapchain, uint32_t capacity, uint32_t* count, XrSwapchainImageBaseHeader* images) {
   Swapchain* sc = as<Swapchain>(swapchain);
   if (!sc) return XR_ERROR_HANDLE_INVALID;
   *count = std::uint32_t(sc->images.size());
@@ -835,8 +813,9 @@ XR_FN(EndFrame)(XrSession, const XrFrameEndInfo* info) {
   return XR_SUCCESS;
 }
 
-XR_FN(LocateViews)(XrSession, const XrViewLocateInfo* info, XrViewState* state, uint32_t capacity, uint32_t* count,
-                   XrView* views) {
+XR_FN(LocateViews)
+(XrSession, const XrViewLocateInfo* info, XrViewState* state, uint32_t capacity, uint32_t* count,
+ XrView* views) {
   *count = 2;
   if (capacity == 0) return XR_SUCCESS;
   if (capacity < 2) return XR_ERROR_SIZE_INSUFFICIENT;
@@ -972,7 +951,8 @@ std::optional<float> action_value(const Action* action) {
   const auto s = sample_at(rt().display_time);
   std::optional<float> value;
   for (const auto& path : bound_paths(action))
-    if (const auto v = input_value(path, s ? *s : ControllerState{})) value = std::max(value.value_or(0.0f), *v);
+    if (const auto v = input_value(path, s ? *s : ControllerState{}))
+      value = std::max(value.value_or(0.0f), *v);
   return value;
 }
 
@@ -1031,14 +1011,14 @@ XR_FN(GetActionStatePose)(XrSession, const XrActionStateGetInfo* info, XrActionS
   return XR_SUCCESS;
 }
 
-XR_FN(EnumerateBoundSourcesForAction)(XrSession, const XrBoundSourcesForActionEnumerateInfo*, uint32_t,
-                                      uint32_t* count, XrPath*) {
+XR_FN(EnumerateBoundSourcesForAction)
+(XrSession, const XrBoundSourcesForActionEnumerateInfo*, uint32_t, uint32_t* count, XrPath*) {
   *count = 0;
   return XR_SUCCESS;
 }
 
-XR_FN(GetInputSourceLocalizedName)(XrSession, const XrInputSourceLocalizedNameGetInfo*, uint32_t capacity,
-                                   uint32_t* count, char* buffer) {
+XR_FN(GetInputSourceLocalizedName)
+(XrSession, const XrInputSourceLocalizedNameGetInfo*, uint32_t capacity, uint32_t* count, char* buffer) {
   *count = 1;
   if (capacity >= 1) buffer[0] = '\0';
   return XR_SUCCESS;
@@ -1060,37 +1040,68 @@ XR_FN(GetInstanceProcAddr)(XrInstance instance, const char* name, PFN_xrVoidFunc
 
 /// Every function of the runtime, by name.
 const std::map<std::string, PFN_xrVoidFunction>& functions() {
-#define SKETCHSURF_XR_ENTRY(name) {"xr" #name, reinterpret_cast<PFN_xrVoidFunction>(&name)}
+#define SKETCHSURF_XR_ENTRY(name) \
+  { "xr" #name, reinterpret_cast<PFN_xrVoidFunction>(&name) }
   static const std::map<std::string, PFN_xrVoidFunction> table = {
-      SKETCHSURF_XR_ENTRY(GetInstanceProcAddr), SKETCHSURF_XR_ENTRY(EnumerateApiLayerProperties),
-      SKETCHSURF_XR_ENTRY(EnumerateInstanceExtensionProperties), SKETCHSURF_XR_ENTRY(CreateInstance),
-      SKETCHSURF_XR_ENTRY(DestroyInstance), SKETCHSURF_XR_ENTRY(GetInstanceProperties),
-      SKETCHSURF_XR_ENTRY(PollEvent), SKETCHSURF_XR_ENTRY(ResultToString),
-      SKETCHSURF_XR_ENTRY(StructureTypeToString), SKETCHSURF_XR_ENTRY(GetSystem),
-      SKETCHSURF_XR_ENTRY(GetSystemProperties), SKETCHSURF_XR_ENTRY(EnumerateEnvironmentBlendModes),
-      SKETCHSURF_XR_ENTRY(CreateSession), SKETCHSURF_XR_ENTRY(DestroySession),
-      SKETCHSURF_XR_ENTRY(EnumerateReferenceSpaces), SKETCHSURF_XR_ENTRY(CreateReferenceSpace),
-      SKETCHSURF_XR_ENTRY(GetReferenceSpaceBoundsRect), SKETCHSURF_XR_ENTRY(CreateActionSpace),
-      SKETCHSURF_XR_ENTRY(LocateSpace), SKETCHSURF_XR_ENTRY(DestroySpace),
-      SKETCHSURF_XR_ENTRY(EnumerateViewConfigurations), SKETCHSURF_XR_ENTRY(GetViewConfigurationProperties),
-      SKETCHSURF_XR_ENTRY(EnumerateViewConfigurationViews), SKETCHSURF_XR_ENTRY(EnumerateSwapchainFormats),
-      SKETCHSURF_XR_ENTRY(CreateSwapchain), SKETCHSURF_XR_ENTRY(DestroySwapchain),
-      SKETCHSURF_XR_ENTRY(EnumerateSwapchainImages), SKETCHSURF_XR_ENTRY(AcquireSwapchainImage),
-      SKETCHSURF_XR_ENTRY(WaitSwapchainImage), SKETCHSURF_XR_ENTRY(ReleaseSwapchainImage),
-      SKETCHSURF_XR_ENTRY(BeginSession), SKETCHSURF_XR_ENTRY(EndSession),
-      SKETCHSURF_XR_ENTRY(RequestExitSession), SKETCHSURF_XR_ENTRY(WaitFrame),
-      SKETCHSURF_XR_ENTRY(BeginFrame), SKETCHSURF_XR_ENTRY(EndFrame), SKETCHSURF_XR_ENTRY(LocateViews),
-      SKETCHSURF_XR_ENTRY(StringToPath), SKETCHSURF_XR_ENTRY(PathToString),
-      SKETCHSURF_XR_ENTRY(CreateActionSet), SKETCHSURF_XR_ENTRY(DestroyActionSet),
-      SKETCHSURF_XR_ENTRY(CreateAction), SKETCHSURF_XR_ENTRY(DestroyAction),
-      SKETCHSURF_XR_ENTRY(SuggestInteractionProfileBindings), SKETCHSURF_XR_ENTRY(AttachSessionActionSets),
-      SKETCHSURF_XR_ENTRY(GetCurrentInteractionProfile), SKETCHSURF_XR_ENTRY(GetActionStateBoolean),
-      SKETCHSURF_XR_ENTRY(GetActionStateFloat), SKETCHSURF_XR_ENTRY(GetActionStateVector2f),
-      SKETCHSURF_XR_ENTRY(GetActionStatePose), SKETCHSURF_XR_ENTRY(SyncActions),
-      SKETCHSURF_XR_ENTRY(EnumerateBoundSourcesForAction), SKETCHSURF_XR_ENTRY(GetInputSourceLocalizedName),
-      SKETCHSURF_XR_ENTRY(ApplyHapticFeedback), SKETCHSURF_XR_ENTRY(StopHapticFeedback),
-      SKETCHSURF_XR_ENTRY(GetVulkanGraphicsRequirements2KHR), SKETCHSURF_XR_ENTRY(CreateVulkanInstanceKHR),
-      SKETCHSURF_XR_ENTRY(GetVulkanGraphicsDevice2KHR), SKETCHSURF_XR_ENTRY(CreateVulkanDeviceKHR),
+      SKETCHSURF_XR_ENTRY(GetInstanceProcAddr),
+      SKETCHSURF_XR_ENTRY(EnumerateApiLayerProperties),
+      SKETCHSURF_XR_ENTRY(EnumerateInstanceExtensionProperties),
+      SKETCHSURF_XR_ENTRY(CreateInstance),
+      SKETCHSURF_XR_ENTRY(DestroyInstance),
+      SKETCHSURF_XR_ENTRY(GetInstanceProperties),
+      SKETCHSURF_XR_ENTRY(PollEvent),
+      SKETCHSURF_XR_ENTRY(ResultToString),
+      SKETCHSURF_XR_ENTRY(StructureTypeToString),
+      SKETCHSURF_XR_ENTRY(GetSystem),
+      SKETCHSURF_XR_ENTRY(GetSystemProperties),
+      SKETCHSURF_XR_ENTRY(EnumerateEnvironmentBlendModes),
+      SKETCHSURF_XR_ENTRY(CreateSession),
+      SKETCHSURF_XR_ENTRY(DestroySession),
+      SKETCHSURF_XR_ENTRY(EnumerateReferenceSpaces),
+      SKETCHSURF_XR_ENTRY(CreateReferenceSpace),
+      SKETCHSURF_XR_ENTRY(GetReferenceSpaceBoundsRect),
+      SKETCHSURF_XR_ENTRY(CreateActionSpace),
+      SKETCHSURF_XR_ENTRY(LocateSpace),
+      SKETCHSURF_XR_ENTRY(DestroySpace),
+      SKETCHSURF_XR_ENTRY(EnumerateViewConfigurations),
+      SKETCHSURF_XR_ENTRY(GetViewConfigurationProperties),
+      SKETCHSURF_XR_ENTRY(EnumerateViewConfigurationViews),
+      SKETCHSURF_XR_ENTRY(EnumerateSwapchainFormats),
+      SKETCHSURF_XR_ENTRY(CreateSwapchain),
+      SKETCHSURF_XR_ENTRY(DestroySwapchain),
+      SKETCHSURF_XR_ENTRY(EnumerateSwapchainImages),
+      SKETCHSURF_XR_ENTRY(AcquireSwapchainImage),
+      SKETCHSURF_XR_ENTRY(WaitSwapchainImage),
+      SKETCHSURF_XR_ENTRY(ReleaseSwapchainImage),
+      SKETCHSURF_XR_ENTRY(BeginSession),
+      SKETCHSURF_XR_ENTRY(EndSession),
+      SKETCHSURF_XR_ENTRY(RequestExitSession),
+      SKETCHSURF_XR_ENTRY(WaitFrame),
+      SKETCHSURF_XR_ENTRY(BeginFrame),
+      SKETCHSURF_XR_ENTRY(EndFrame),
+      SKETCHSURF_XR_ENTRY(LocateViews),
+      SKETCHSURF_XR_ENTRY(StringToPath),
+      SKETCHSURF_XR_ENTRY(PathToString),
+      SKETCHSURF_XR_ENTRY(CreateActionSet),
+      SKETCHSURF_XR_ENTRY(DestroyActionSet),
+      SKETCHSURF_XR_ENTRY(CreateAction),
+      SKETCHSURF_XR_ENTRY(DestroyAction),
+      SKETCHSURF_XR_ENTRY(SuggestInteractionProfileBindings),
+      SKETCHSURF_XR_ENTRY(AttachSessionActionSets),
+      SKETCHSURF_XR_ENTRY(GetCurrentInteractionProfile),
+      SKETCHSURF_XR_ENTRY(GetActionStateBoolean),
+      SKETCHSURF_XR_ENTRY(GetActionStateFloat),
+      SKETCHSURF_XR_ENTRY(GetActionStateVector2f),
+      SKETCHSURF_XR_ENTRY(GetActionStatePose),
+      SKETCHSURF_XR_ENTRY(SyncActions),
+      SKETCHSURF_XR_ENTRY(EnumerateBoundSourcesForAction),
+      SKETCHSURF_XR_ENTRY(GetInputSourceLocalizedName),
+      SKETCHSURF_XR_ENTRY(ApplyHapticFeedback),
+      SKETCHSURF_XR_ENTRY(StopHapticFeedback),
+      SKETCHSURF_XR_ENTRY(GetVulkanGraphicsRequirements2KHR),
+      SKETCHSURF_XR_ENTRY(CreateVulkanInstanceKHR),
+      SKETCHSURF_XR_ENTRY(GetVulkanGraphicsDevice2KHR),
+      SKETCHSURF_XR_ENTRY(CreateVulkanDeviceKHR),
   };
 #undef SKETCHSURF_XR_ENTRY
   return table;

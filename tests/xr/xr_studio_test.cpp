@@ -23,8 +23,8 @@ using input::ControllerState;
 
 /// The test runtime's head and eyes (test_runtime.cpp, xrLocateViews).
 struct EyeModel {
-  double x;                           // eye position (x, 1.6, 0), looking down -z
-  double left, right, up, down;       // field of view, radians
+  double x;                      // eye position (x, 1.6, 0), looking down -z
+  double left, right, up, down;  // field of view, radians
 };
 const EyeModel kEyes[2] = {{-0.032, -0.80, 0.70, 0.72, -0.78}, {0.032, -0.70, 0.80, 0.72, -0.78}};
 constexpr int kWidth = 512, kHeight = 448;
@@ -101,8 +101,9 @@ std::string xr_env(const std::filesystem::path& dir, const std::filesystem::path
                    const std::string& extra = "") {
   return "env XR_RUNTIME_JSON=" + quoted(SKETCHSURF_TEST_XR_RUNTIME) +
          " XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation XR_CORE_VALIDATION_EXPORT_TYPE=text"
-         " XR_CORE_VALIDATION_FILE_NAME=" + quoted(dir / "xr_validation.txt") +
-         " SKETCHSURF_TEST_XR_TRACK=" + quoted(track) + " SKETCHSURF_TEST_XR_OUT=" + quoted(dir) + " " + extra;
+         " XR_CORE_VALIDATION_FILE_NAME=" +
+         quoted(dir / "xr_validation.txt") + " SKETCHSURF_TEST_XR_TRACK=" + quoted(track) +
+         " SKETCHSURF_TEST_XR_OUT=" + quoted(dir) + " " + extra;
 }
 
 nlohmann::json read_report(const std::filesystem::path& dir) {
@@ -119,22 +120,25 @@ TEST(StudioXr, ScriptedControllerDrawsAStrokeSeenByBothEyes) {
   const auto dir = scratch_dir("studio_xr_");
   std::vector<Eigen::Vector3d> expected;
   input::write_track(stroke_track(&expected), dir / "track.json");
-  const CliRun run = run_studio("--xr --validation -v --no-autosave --msaa 1 --save " + quoted(dir / "sketch.json"),
-                                dir, xr_env(dir, dir / "track.json"));
+  const CliRun run =
+      run_studio("--xr --validation -v --no-autosave --msaa 1 --save " + quoted(dir / "sketch.json"), dir,
+                 xr_env(dir, dir / "track.json"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.err.find("headset session FOCUSED"), std::string::npos) << run.err;
-  EXPECT_NE(run.err.find("controller: /interaction_profiles/oculus/touch_controller"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("controller: /interaction_profiles/oculus/touch_controller"), std::string::npos)
+      << run.err;
   EXPECT_NE(run.err.find("validation: 0 messages"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find(", 1 haptic ticks"), std::string::npos) << run.err;
   // The layer announces itself on stdout (which run_studio logs too).
-  EXPECT_NE(run.err.find("Core Validation output type: text"), std::string::npos) << "the layer ran: " << run.err;
+  EXPECT_NE(run.err.find("Core Validation output type: text"), std::string::npos)
+      << "the layer ran: " << run.err;
   expect_no_xr_validation_messages(dir);
 
   // The life cycle, in order, and a clean end.
   const nlohmann::json report = read_report(dir);
   const std::vector<std::string> states = report["states"];
-  const std::vector<std::string> cycle = {"IDLE",    "READY", "SYNCHRONIZED", "VISIBLE", "FOCUSED",
-                                          "VISIBLE", "SYNCHRONIZED", "STOPPING", "IDLE", "EXITING"};
+  const std::vector<std::string> cycle = {"IDLE",    "READY",        "SYNCHRONIZED", "VISIBLE", "FOCUSED",
+                                          "VISIBLE", "SYNCHRONIZED", "STOPPING",     "IDLE",    "EXITING"};
   EXPECT_EQ(states, cycle);
   EXPECT_TRUE(report["stopped_by_runtime"]);
   EXPECT_TRUE(report["session_ended"]);
@@ -173,19 +177,22 @@ TEST(StudioXr, ScriptedControllerDrawsAStrokeSeenByBothEyes) {
     }
     // Parallax: the other eye's projection of the stroke's start misses this eye's picture of it
     // (the eyes are 64 mm apart, the stroke 0.5 m away: about 20 pixels).
-    const Eigen::Vector2d here = project(kEyes[e], expected.front()), there = project(kEyes[1 - e], expected.front());
+    const Eigen::Vector2d here = project(kEyes[e], expected.front()),
+                          there = project(kEyes[1 - e], expected.front());
     EXPECT_GT((here - there).norm(), 10.0);
   }
 }
 
 TEST(StudioXr, EveryBoundControllerDrawsTheStroke) {
-  for (const char* profile : {"/interaction_profiles/khr/simple_controller", "/interaction_profiles/valve/index_controller",
-                              "/interaction_profiles/htc/vive_controller"}) {
+  for (const char* profile :
+       {"/interaction_profiles/khr/simple_controller", "/interaction_profiles/valve/index_controller",
+        "/interaction_profiles/htc/vive_controller"}) {
     const auto dir = scratch_dir("studio_xr_profile_");
     std::vector<Eigen::Vector3d> expected;
     input::write_track(stroke_track(&expected), dir / "track.json");
-    const CliRun run = run_studio("--xr --no-autosave --msaa 1 --save " + quoted(dir / "sketch.json"), dir,
-                                  xr_env(dir, dir / "track.json", "SKETCHSURF_TEST_XR_PROFILE=" + std::string(profile)));
+    const CliRun run =
+        run_studio("--xr --no-autosave --msaa 1 --save " + quoted(dir / "sketch.json"), dir,
+                   xr_env(dir, dir / "track.json", "SKETCHSURF_TEST_XR_PROFILE=" + std::string(profile)));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_NE(run.err.find("controller: " + std::string(profile)), std::string::npos) << run.err;
     const Sketch sketch = read_sketch(dir / "sketch.json");
@@ -201,7 +208,8 @@ TEST(StudioXr, FramesEndTheSessionThroughAnExitRequest) {
   const auto dir = scratch_dir("studio_xr_exit_");
   std::vector<Eigen::Vector3d> expected;
   input::write_track(stroke_track(&expected), dir / "track.json");
-  const CliRun run = run_studio("--xr --frames 5 --no-autosave --msaa 1", dir, xr_env(dir, dir / "track.json"));
+  const CliRun run =
+      run_studio("--xr --frames 5 --no-autosave --msaa 1", dir, xr_env(dir, dir / "track.json"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json report = read_report(dir);
   EXPECT_FALSE(report["stopped_by_runtime"]);
@@ -216,14 +224,17 @@ TEST(StudioXr, NoRuntimeSaysSoInOneLineAndStartsTheDesktopStudio) {
   if (std::filesystem::exists("/etc/openxr/1/active_runtime.json"))
     GTEST_SKIP() << "an OpenXR runtime is installed on this machine";
   const auto dir = scratch_dir("studio_xr_none_");
-  const CliRun run = run_studio("--xr --headless --frames 2 --no-autosave --save " + quoted(dir / "s.json"), dir,
-                                "env -u XR_RUNTIME_JSON XDG_CONFIG_HOME=" + quoted(dir / "home") +
-                                    " XDG_CONFIG_DIRS=" + quoted(dir / "etc"));
+  const CliRun run =
+      run_studio("--xr --headless --frames 2 --no-autosave --save " + quoted(dir / "s.json"), dir,
+                 "env -u XR_RUNTIME_JSON XDG_CONFIG_HOME=" + quoted(dir / "home") +
+                     " XDG_CONFIG_DIRS=" + quoted(dir / "etc"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string line =
       "studio: no OpenXR runtime: XR_RUNTIME_JSON unset and no active_runtime.json (looked for " +
-      (dir / "home/openxr/1/active_runtime.json").string() + ", " + (dir / "etc/openxr/1/active_runtime.json").string() +
-      ", /etc/openxr/1/active_runtime.json; install Monado, SteamVR or another runtime, or set XR_RUNTIME_JSON); "
+      (dir / "home/openxr/1/active_runtime.json").string() + ", " +
+      (dir / "etc/openxr/1/active_runtime.json").string() +
+      ", /etc/openxr/1/active_runtime.json; install Monado, SteamVR or another runtime, or set "
+      "XR_RUNTIME_JSON); "
       "starting the desktop studio\n";
   EXPECT_NE(run.err.find(line), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("studio: headless "), std::string::npos) << "the desktop studio ran: " << run.err;
@@ -237,9 +248,10 @@ TEST(StudioXr, NoHeadsetSaysSoAndStartsTheDesktopStudio) {
   const CliRun run = run_studio("--xr --headless --frames 2 --no-autosave", dir,
                                 xr_env(dir, dir / "track.json", "SKETCHSURF_TEST_XR_NO_HMD=1"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.err.find("studio: no headset: the OpenXR runtime 'sketchsurf test runtime 1.0.0' sees no "
-                         "head-mounted display (XR_ERROR_FORM_FACTOR_UNAVAILABLE); starting the desktop studio\n"),
-            std::string::npos)
+  EXPECT_NE(
+      run.err.find("studio: no headset: the OpenXR runtime 'sketchsurf test runtime 1.0.0' sees no "
+                   "head-mounted display (XR_ERROR_FORM_FACTOR_UNAVAILABLE); starting the desktop studio\n"),
+      std::string::npos)
       << run.err;
   EXPECT_NE(run.err.find("studio: headless "), std::string::npos) << run.err;
   expect_no_xr_validation_messages(dir);

@@ -48,8 +48,9 @@ HeadsetStudio::HeadsetStudio(const StudioOptions& options, const Log& log)
     : parts_(std::make_unique<Parts>(options, log)), log_(log) {
   Parts& p = *parts_;
   studio_ = std::make_unique<Studio>(options, *p.context, log);
-  p.headset = std::make_unique<vk::HeadsetSession>(*p.system, *p.context, sample_count(options.msaa, *p.context),
-                                                   [&log](const std::string& line) { log.info(line); });
+  p.headset =
+      std::make_unique<vk::HeadsetSession>(*p.system, *p.context, sample_count(options.msaa, *p.context),
+                                           [&log](const std::string& line) { log.info(line); });
   p.renderer = std::make_unique<render::Renderer>(*p.context, p.headset->render_pass(), p.headset->samples());
   p.controller = std::make_unique<input::XrController>(p.system->instance(), p.headset->session());
   studio_->set_controller(p.controller.get());

@@ -130,7 +130,8 @@ TEST(XrMapping, AHeldUndoButtonUndoesOnceAndAStrokeIsDrawnWhileTheTriggerIsDown)
   };
   for (int i = 0; i < 2; ++i) {
     for (int k = 0; k <= 5; ++k) {
-      XrControllerSample s = aimed({0.1 * k, 0.1 * i, 0}, Eigen::Quaterniond::Identity(), k < 5 ? 0.9f : 0.0f);
+      XrControllerSample s =
+          aimed({0.1 * k, 0.1 * i, 0}, Eigen::Quaterniond::Identity(), k < 5 ? 0.9f : 0.0f);
       s.time_s = 0.1 * (6 * i + k);
       feed(s);
     }
