@@ -5,9 +5,13 @@
 // puts it, and nothing is reported by either layer. Without a runtime or a headset: a one-line
 // message and the desktop studio (headless here).
 
+#include <openxr/openxr.h>
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 
 #include "engine/input/track.h"
@@ -114,6 +118,28 @@ void expect_no_xr_validation_messages(const std::filesystem::path& dir) {
   const std::string messages = read_text(dir / "xr_validation.txt");  // empty when not written
   EXPECT_EQ(messages.find("VUID"), std::string::npos) << messages;
   EXPECT_EQ(messages.find("rror"), std::string::npos) << messages;
+}
+
+TEST(StudioXr, TheCoreValidationLayerReportsMisuseToItsFile) {
+  // The check the other tests rely on: with the layer enabled as they enable it, an invalid call
+  // (a structure of the wrong type) lands in the file they read.
+  const auto dir = scratch_dir("studio_xr_layer_");
+  setenv("XR_RUNTIME_JSON", SKETCHSURF_TEST_XR_RUNTIME, 1);
+  setenv("XR_ENABLE_API_LAYERS", "XR_APILAYER_LUNARG_core_validation", 1);
+  setenv("XR_CORE_VALIDATION_EXPORT_TYPE", "text", 1);
+  setenv("XR_CORE_VALIDATION_FILE_NAME", (dir / "xr_validation.txt").c_str(), 1);
+  XrInstanceCreateInfo info{XR_TYPE_INSTANCE_CREATE_INFO};
+  std::strcpy(info.applicationInfo.applicationName, "layer check");
+  info.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+  XrInstance instance = XR_NULL_HANDLE;
+  ASSERT_EQ(xrCreateInstance(&info, &instance), XR_SUCCESS);
+  XrSystemGetInfo wrong{XR_TYPE_SESSION_CREATE_INFO};  // should be XR_TYPE_SYSTEM_GET_INFO
+  wrong.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+  XrSystemId system = XR_NULL_SYSTEM_ID;
+  EXPECT_EQ(xrGetSystem(instance, &wrong, &system), XR_ERROR_VALIDATION_FAILURE);
+  xrDestroyInstance(instance);
+  EXPECT_NE(read_text(dir / "xr_validation.txt").find("VUID-XrSystemGetInfo-type-type"), std::string::npos)
+      << read_text(dir / "xr_validation.txt");
 }
 
 TEST(StudioXr, ScriptedControllerDrawsAStrokeSeenByBothEyes) {
