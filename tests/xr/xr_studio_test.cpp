@@ -230,13 +230,16 @@ TEST(StudioXr, EveryBoundControllerDrawsTheStroke) {
   }
 }
 
-TEST(StudioXr, FramesEndTheSessionThroughAnExitRequest) {
+TEST(StudioXr, FramesEndTheSessionThroughAnExitRequestWithMultisampling) {
   const auto dir = scratch_dir("studio_xr_exit_");
   std::vector<Eigen::Vector3d> expected;
   input::write_track(stroke_track(&expected), dir / "track.json");
+  // With 4x MSAA: the eyes' multisampled images resolve into the runtime's.
   const CliRun run =
-      run_studio("--xr --frames 5 --no-autosave --msaa 1", dir, xr_env(dir, dir / "track.json"));
+      run_studio("--xr --frames 5 --no-autosave --msaa 4 --validation", dir, xr_env(dir, dir / "track.json"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("MSAA 4"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("validation: 0 messages"), std::string::npos) << run.err;
   const nlohmann::json report = read_report(dir);
   EXPECT_FALSE(report["stopped_by_runtime"]);
   EXPECT_TRUE(report["session_ended"]);
