@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <iomanip>
+#include <sstream>
 
 #include "surfacing/error.h"
 #include "surfacing/extract/mirror.h"
@@ -21,7 +23,8 @@ bool PrepareOptions::valid(std::string* why) const {
     if (why) *why = "prepare.min_points must be at least 2";
     return false;
   }
-  return decorations.valid(why) && openings.valid(why) && mirror_detection.valid(why);
+  return consolidation.valid(why) && decorations.valid(why) && openings.valid(why) &&
+         mirror_detection.valid(why);
 }
 
 bool Params::valid(std::string* why) const {
@@ -54,6 +57,8 @@ const std::map<std::string, Setter>& parameter_table() {
   static const std::map<std::string, Setter> table = {
       {"prepare.resample_spacing", setter([](Params& p) -> auto& { return p.prepare.resample_spacing; })},
       {"prepare.min_points", setter([](Params& p) -> auto& { return p.prepare.min_points; })},
+      {"prepare.consolidate", setter([](Params& p) -> auto& { return p.prepare.consolidate; })},
+      {"prepare.consolidation_radius", setter([](Params& p) -> auto& { return p.prepare.consolidation.radius; })},
       {"prepare.ignore_decorations", setter([](Params& p) -> auto& { return p.prepare.ignore_decorations; })},
       {"prepare.open_rims", setter([](Params& p) -> auto& { return p.prepare.open_rims; })},
       {"proxy.points", setter([](Params& p) -> auto& { return p.proxy.points; })},
@@ -89,11 +94,13 @@ const std::map<std::string, Setter>& parameter_table() {
       {"segment.seed", setter([](Params& p) -> auto& { return p.segment.seed; })},
       {"segment.simplify", setter([](Params& p) -> auto& { return p.segment.simplify; })},
       {"segment.threads", setter([](Params& p) -> auto& { return p.segment.threads; })},
+      {"checks.refuse_score", setter([](Params& p) -> auto& { return p.checks.refuse_score; })},
       {"extract.gamma_2d", setter([](Params& p) -> auto& { return p.extract.energy.gamma_2d; })},
       {"extract.gamma_1d", setter([](Params& p) -> auto& { return p.extract.energy.gamma_1d; })},
       {"extract.smooth_angle", setter([](Params& p) -> auto& { return p.extract.energy.smooth_angle; })},
       {"extract.sharp_angle", setter([](Params& p) -> auto& { return p.extract.energy.sharp_angle; })},
       {"extract.attract_weight", setter([](Params& p) -> auto& { return p.extract.energy.attract_weight; })},
+      {"extract.trust_distance", setter([](Params& p) -> auto& { return p.extract.energy.trust_distance; })},
       {"extract.max_iterations", setter([](Params& p) -> auto& { return p.extract.energy.max_iterations; })},
       {"extract.lbfgs_rank", setter([](Params& p) -> auto& { return p.extract.energy.lbfgs_rank; })},
       {"extract.projection_steps", setter([](Params& p) -> auto& { return p.extract.energy.projection_steps; })},
@@ -174,6 +181,8 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
     throw Error(ErrorKind::Input, "all the sketch's points coincide; nothing to surface");
   if (params_.prepare.resample_spacing > 0.0)
     resample(sketch, params_.prepare.resample_spacing * report.diagonal);
+  if (params_.prepare.consolidate)
+    report.consolidation = consolidate_overdrawn(sketch, params_.prepare.consolidation);
   if (params_.prepare.ignore_decorations) {
     report.decorations = find_decorations(sketch, params_.prepare.decorations);
     for (const Decoration& d : report.decorations) sketch.strokes[d.stroke].ignored = true;
@@ -224,8 +233,24 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
 
   // Final mesh (§4.3, App. D).
   t = Clock::now();
-  ExtractedSurface surface = extract(result.proxy, result.segmentation.labels,
-                                     result.segmentation.models, work, params_.extract, progress);
+  ExtractedSurface surface = [&] {
+    try {
+      return extract(result.proxy, result.segmentation.labels, result.segmentation.models, work,
+                     params_.extract, progress);
+    } catch (const Error& e) {
+      // Rims found in the strokes (not marked by the user) that the proxy cannot be opened at:
+      // the surface stays closed, as it would be without them, and the report says why.
+      if (e.kind() != ErrorKind::Processing || report.openings.empty()) throw;
+      report.opening_failure = e.what();
+      for (const Opening& o : report.openings)
+        for (Sketch* s : {&sketch, &work})
+          for (Stroke& stroke : s->strokes)
+            if (stroke.id == o.id) stroke.boundary = false;
+      report.openings.clear();
+      return extract(result.proxy, result.segmentation.labels, result.segmentation.models, work,
+                     params_.extract, progress);
+    }
+  }();
   result.mesh = std::move(surface.mesh);
   result.labels = std::move(surface.labels);
   result.sharp = std::move(surface.sharp);
@@ -242,6 +267,19 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   if (checks.threads == 0) checks.threads = params_.segment.threads;
   report.checks = check_shape(result.mesh, result.labels, sketch, open_expected, checks);
   report.checks_s = seconds_since(t);
+  // A user's proxy says what the surface is; without one, a surface that neither passes through
+  // the strokes nor stays within them is not what they depict.
+  if (!user_proxy && params_.checks.refuse_score > 0.0 &&
+      non_surface_score(report.checks, report.stroke_distance.p95) > params_.checks.refuse_score) {
+    std::ostringstream refusal;
+    refusal << std::fixed << std::setprecision(1) << "the strokes do not seem to depict one surface "
+        << "(hatching, writing or a painterly scene?): the best surface found leaves 5% of the "
+        << "stroke points farther than " << 100.0 * report.stroke_distance.p95
+        << "% of the diagonal from it and runs out beyond the strokes over " << 100.0 * report.checks.beyond
+        << "% of its area. Draw the object's outlines and cross-sections, give a proxy mesh, or "
+        << "keep the result anyway (checks.refuse_score = 0; the command line's --force)";
+    throw Error::processing(refusal.str());
+  }
   report.total_s = seconds_since(start);
   progress.update("done", 1.0);
   return result;

@@ -26,6 +26,7 @@
 #include "surfacing/proxy/proxy.h"
 #include "surfacing/quality/checks.h"
 #include "surfacing/segment/pearl.h"
+#include "surfacing/sketch/consolidate.h"
 #include "surfacing/sketch/decorations.h"
 #include "surfacing/sketch/openings.h"
 #include "surfacing/sketch/sketch.h"
@@ -37,6 +38,9 @@ namespace sketchsurf {
 struct PrepareOptions {
   double resample_spacing = 0.005;  ///< stroke resampling step, fraction of the diagonal; 0 = keep
   int min_points = 2;               ///< strokes with fewer points after cleaning are dropped
+  bool consolidate = false;         ///< passes of an over-sketched curve are pulled onto their
+                                    ///< centre line (consolidate.h)
+  ConsolidateOptions consolidation;
   bool ignore_decorations = true;   ///< strokes that depict no surface (a dot apart, a stroke
                                     ///< hanging by one end) are marked ignored (decorations.h)
   DecorationOptions decorations;
@@ -68,9 +72,12 @@ struct Params {
 /// What the Surfacer did, stage by stage (the CLI's report.json).
 struct SurfaceReport {
   CleanReport cleaning;
+  Consolidation consolidation;          ///< over-sketched passes drawn together
   std::size_t strokes = 0, points = 0;  ///< after preparation (ignored strokes included)
   std::vector<Decoration> decorations;  ///< strokes ignored as depicting no surface
   std::vector<Opening> openings;        ///< rims found and made boundary strokes
+  std::string opening_failure;          ///< why the rims found could not be opened (the surface
+                                        ///< was then kept closed); empty otherwise
   std::optional<DetectedMirror> symmetry;  ///< a mirror plane the strokes have, when the sketch
                                            ///< was given none (reported, not applied)
   double diagonal = 0.0;                ///< of the prepared sketch's bounding box, sketch units
@@ -104,7 +111,8 @@ class Surfacer {
   /// `user_proxy` to the strokes, halves both at the mirror plane when sketch.mirror is set,
   /// segments (association, PEARL) and extracts the final mesh (seams, E_mesh, trim, mirror).
   /// Throws Error: Input for an empty sketch, every stroke ignored, or a proxy without triangles;
-  /// Processing when a stage cannot proceed (a proxy far from the strokes, no surface found),
+  /// Processing when a stage cannot proceed (a proxy far from the strokes, no surface found) or,
+  /// without a user proxy, when the strokes depict no surface (CheckOptions::refuse_score),
   /// Usage for invalid parameters, Cancelled through the callback.
   SurfaceResult run(const Sketch& sketch, const TriMesh* user_proxy = nullptr) const;
 

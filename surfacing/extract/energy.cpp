@@ -352,8 +352,11 @@ MeshEnergy build_energy(const LabeledMesh& lm, const std::vector<ImplicitModel>&
     std::nth_element(g.begin(), g.begin() + g.size() / 2, g.end());
     floor[l] = 1e-3 * g[g.size() / 2];
   }
+  std::vector<bool> held(static_cast<std::size_t>(n), false);
+  for (int v : constraints.held) held[static_cast<std::size_t>(v)] = true;
   for (int v = 0; v < n; ++v)
-    for (int l : lm.labels[v]) energy.project.push_back({v, l, 1.0 / lm.labels[v].size(), floor[l]});
+    if (!held[static_cast<std::size_t>(v)])
+      for (int l : lm.labels[v]) energy.project.push_back({v, l, 1.0 / lm.labels[v].size(), floor[l]});
 
   // E_regularize (Eq. 9).
   const std::vector<double> w = regularization_weights(lm, models, options);

@@ -161,6 +161,7 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
     for (std::size_t v = 0; v < on_plane.size(); ++v)
       if (on_plane[v]) constraints.plane_vertices.push_back(static_cast<int>(v));
   }
+  constraints.strokes = stroke_segments(sketch, false);
   if (open) constraints.attract = boundary_targets(seamed.mesh, sketch, on_plane, diagonal, options.trim);
   summary.attracted_vertices = constraints.attract.size();
   summary.optimization = optimize_mesh(seamed, models, constraints, options.energy, progress);

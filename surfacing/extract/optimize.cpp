@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "surfacing/closest_face.h"
 #include "surfacing/error.h"
 #include "surfacing/extract/energy.h"
 #include "surfacing/extract/global_step.h"
@@ -41,6 +42,7 @@ bool MeshEnergyOptions::valid(std::string* why) const {
   if (lbfgs_rank < 1) return fail("extract.lbfgs_rank must be at least 1");
   if (projection_steps < 0) return fail("extract.projection_steps must be >= 0");
   if (!(max_projection_step > 0.0)) return fail("extract.max_projection_step must be > 0");
+  if (!(trust_distance >= 0.0)) return fail("extract.trust_distance must be >= 0");
   return true;
 }
 
@@ -48,11 +50,12 @@ namespace {
 
 /// Moves each vertex onto the intersection of its labels' surfaces by damped Gauss-Newton steps
 /// (least-norm dx with f_i + grad f_i . dx = 0), each step at most `max_step` long: a cheap start
-/// that leaves L-BFGS mostly the regularisation to do.
+/// that leaves L-BFGS mostly the regularisation to do. Vertices marked `held` stay.
 void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models, int steps,
-                      double max_step, unsigned threads) {
+                      double max_step, unsigned threads, const std::vector<char>& held) {
   TriMesh& mesh = lm.mesh;
   parallel_for(0, mesh.n_vertices(), threads, [&](std::size_t i) {
+    if (held[i]) return;
     const TriMesh::VertexHandle v(static_cast<int>(i));
     Eigen::Vector3d x = to_eigen(mesh.point(v));
     const auto& labels = lm.labels[i];
@@ -131,6 +134,7 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   };
   for (const auto& t : constraints.attract) check_vertex(t.vertex);
   for (int v : constraints.plane_vertices) check_vertex(v);
+  for (int v : constraints.held) check_vertex(v);
   if (!constraints.plane_vertices.empty() && !constraints.plane)
     throw Error::usage("optimize_mesh: plane vertices without a plane");
 
@@ -155,23 +159,69 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   OptimizeSummary summary;
   summary.initial = detail::MeshEnergyFunction(initial_energy, n, team).terms(x.data());
   const auto start = std::chrono::steady_clock::now();
-  if (options.projection_steps > 0) {
-    project_vertices(lm, models, options.projection_steps, options.max_projection_step * size, threads);
-    load();
+  const std::vector<double> proxy = x;
+  // Vertices whose surfaces lie only farther from the strokes than where the proxy put them stay
+  // there: what they would land on (a far branch of a zero set, a model extrapolated past its
+  // strokes) is not what the strokes depict. Tested after the first projection, and once more
+  // after the solve (the solve can carry vertices there step by step); a vertex held then makes
+  // a second solve from the proxy.
+  MeshConstraints trusted = constraints;
+  std::optional<ClosestFaceTree> tree;
+  if (options.trust_distance > 0.0 && constraints.strokes && constraints.strokes->segments.rows() > 0)
+    tree.emplace(constraints.strokes->points, constraints.strokes->segments);
+  const double reach = options.trust_distance * size;
+  std::vector<char> held(static_cast<std::size_t>(n), 0);
+  const auto hold_far = [&](const std::vector<double>& at) {
+    if (!tree) return false;
+    const auto to_strokes = [&](const double* p) {
+      const Eigen::Vector3d point(p[0], p[1], p[2]);
+      Eigen::Vector3d q;
+      return tree->closest_face(point, &q) < 0 ? 0.0 : (q - point).norm();
+    };
+    std::vector<char> far(static_cast<std::size_t>(n), 0);
+    parallel_for(0, static_cast<std::size_t>(n), threads, [&](std::size_t i) {
+      const double* from = &proxy[3 * i];
+      const double* to = &at[3 * i];
+      const double moved = std::hypot(to[0] - from[0], to[1] - from[1], to[2] - from[2]);
+      far[i] = !held[i] && moved > reach && to_strokes(to) > to_strokes(from) + reach;
+    });
+    bool any = false;
+    for (int v = 0; v < n; ++v) {
+      if (!far[static_cast<std::size_t>(v)]) continue;
+      held[static_cast<std::size_t>(v)] = 1;
+      trusted.held.push_back(v);
+      trusted.attract.push_back({v, Eigen::Vector3d(proxy[3 * v], proxy[3 * v + 1], proxy[3 * v + 2])});
+      any = true;
+    }
+    return any;
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    x = proxy;
+    for (auto v : mesh.vertices())
+      mesh.set_point(v, TriMesh::Point(proxy[3 * v.idx()], proxy[3 * v.idx() + 1], proxy[3 * v.idx() + 2]));
+    if (options.projection_steps > 0) {
+      project_vertices(lm, models, options.projection_steps, options.max_projection_step * size, threads, held);
+      load();
+      if (pass == 0 && hold_far(x)) {
+        for (int v : trusted.held) mesh.set_point(TriMesh::VertexHandle(v), TriMesh::Point(&proxy[3 * v]));
+        load();
+      }
+    }
+    const detail::MeshEnergy energy = detail::build_energy(lm, models, trusted, options);
+    if (options.local_global_iterations > 0) {
+      double edges = 0.0;
+      for (auto e : mesh.edges()) edges += mesh.calc_edge_length(e);
+      const double mean_edge = mesh.n_edges() > 0 ? edges / mesh.n_edges() : size;
+      summary.local_global_iterations = detail::local_global(
+          energy, n, options.local_global_iterations, std::max(1, options.projection_steps),
+          options.max_projection_step * size, options.local_global_tolerance * mean_edge,
+          options.global_step_tolerance, team, x);
+    }
+    const detail::MeshEnergyFunction function(energy, n, team);
+    minimize(energy, function, team, x, size, summary);
+    if (pass == 1 || !hold_far(x)) break;
   }
-  const detail::MeshEnergy energy = detail::build_energy(lm, models, constraints, options);
-  if (options.local_global_iterations > 0) {
-    double edges = 0.0;
-    for (auto e : mesh.edges()) edges += mesh.calc_edge_length(e);
-    const double mean_edge = mesh.n_edges() > 0 ? edges / mesh.n_edges() : size;
-    summary.local_global_iterations = detail::local_global(
-        energy, n, options.local_global_iterations, std::max(1, options.projection_steps),
-        options.max_projection_step * size, options.local_global_tolerance * mean_edge,
-        options.global_step_tolerance, team, x);
-  }
-  const detail::MeshEnergyFunction function(energy, n, team);
-
-  minimize(energy, function, team, x, size, summary);
+  summary.held_vertices = trusted.held.size();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (double value : x)

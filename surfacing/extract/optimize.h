@@ -21,6 +21,7 @@
 #include "surfacing/progress.h"
 #include "surfacing/segment/implicit.h"
 #include "surfacing/sketch/sketch.h"
+#include "surfacing/sketch/stroke_segments.h"
 
 namespace sketchsurf {
 
@@ -37,6 +38,12 @@ struct MeshEnergyOptions {
                                      ///< before the solve, and Newton steps of each local step
                                      ///< (ours: a cheap start for L-BFGS)
   double max_projection_step = 0.02; ///< longest such step, fraction of the mesh's diagonal (ours)
+  double trust_distance = 0.03;      ///< a vertex that those steps would take farther than this
+                                     ///< away from the strokes (fraction of the mesh's diagonal)
+                                     ///< has no surface of its regions near it (a far branch of the
+                                     ///< zero set, a model extrapolated past its strokes): it stays
+                                     ///< with the proxy, held at its start by E_attract instead of
+                                     ///< projected; 0 = no limit (ours)
   int local_global_iterations = 5;   ///< local-global iterations after the projection, 0 = none
                                      ///< (ours; each costs ~10 L-BFGS iterations)
   double local_global_tolerance = 1e-3;  ///< they stop early when no vertex moves more, fraction
@@ -70,6 +77,9 @@ struct MeshConstraints {
   std::vector<AttractTarget> attract;  ///< E_attract targets (App. D)
   std::optional<Plane> plane;          ///< mirror plane, when the mesh is half of a symmetric one
   std::vector<int> plane_vertices;     ///< vertices that must stay on `plane` (its boundary there)
+  std::vector<int> held;               ///< vertices with no E_project term (each also needs an
+                                       ///< `attract` target, or only the Laplacian places it)
+  std::optional<StrokeSegments> strokes;  ///< the strokes, for trust_distance (none: no limit)
 };
 
 /// Energies of E_mesh's terms, each a plain sum of squares (mesh units squared) with its weight.
@@ -87,6 +97,7 @@ struct OptimizeSummary {
   MeshEnergyTerms initial, final;
   int iterations = 0;
   int local_global_iterations = 0;  ///< iterations of the local-global start made
+  std::size_t held_vertices = 0;    ///< vertices kept with the proxy (trust_distance)
   std::string termination;  ///< termination type and message (in Ceres' words: CONVERGENCE, ...)
   std::string solver;       ///< minimizer and linear solver used
   bool usable = false;      ///< the solver reports a usable solution

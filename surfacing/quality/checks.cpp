@@ -238,4 +238,8 @@ ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, con
   return out;
 }
 
+double non_surface_score(const ShapeChecks& checks, double stroke_p95) {
+  return checks.beyond * 100.0 * stroke_p95;
+}
+
 }  // namespace sketchsurf

@@ -11,7 +11,8 @@
 
 namespace sketchsurf {
 
-/// Options for check_shape(); the thresholds only decide which warnings are written.
+/// Options for check_shape() (the thresholds decide which warnings are written) and for the
+/// Surfacer's refusal of scenes that depict no surface.
 struct CheckOptions {
   std::size_t samples = 20000;  ///< area-weighted sample points on the surface
   double box_margin = 0.02;     ///< the strokes' bounding box is grown by this fraction of its
@@ -25,9 +26,15 @@ struct CheckOptions {
   long warn_genus = 4;          ///< warn when the genus exceeds this
   double warn_crossing = 0.01;  ///< warn when crossing triangle pairs exceed this fraction of the
                                 ///< triangles (a few stray pairs where thin parts touch are common)
+  double refuse_score = 0.3;    ///< the Surfacer refuses a result (Error Processing) whose
+                                ///< `beyond` times its stroke distance p95 (percent of the
+                                ///< diagonal) exceeds this: a surface that neither passes through
+                                ///< the strokes nor stays within them is not what they depict
+                                ///< (hatching, writing, a painterly scene); 0 = never refuse
   unsigned seed = 1;
   unsigned threads = 0;         ///< 0 = all; the result does not depend on it
 };
+
 
 /// What the checks found. Area fractions are of the whole surface; lengths of the diagonal.
 struct ShapeChecks {
@@ -55,6 +62,10 @@ struct ShapeChecks {
 /// so no warning for them.
 ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, const Sketch& sketch,
                         bool open_expected, const CheckOptions& options = {});
+
+/// The score CheckOptions::refuse_score is compared with: `beyond` (area fraction) times the
+/// stroke distance p95 in percent of the diagonal.
+double non_surface_score(const ShapeChecks& checks, double stroke_p95);
 
 /// Pairs of triangles of `mesh` that share no vertex and intersect (a uniform grid over the
 /// triangles' boxes, then exact segment-triangle tests).

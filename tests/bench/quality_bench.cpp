@@ -5,6 +5,7 @@
 // creases found, the shape checks and the time. One Markdown table on stdout, medians at the end;
 // docs/quality.md keeps the output of each change that matters.
 //   quality_bench [--cases box,mug,...] [--styles net,vr] [--restarts N] [--seed N] [--write DIR]
+//                 [--param NAME=VALUE]...
 // --write DIR keeps, per case and style, the truth, the sketch, the proxy and the final surface
 // (CASE-STYLE.truth.ply, .json, .proxy.ply, .ply) to look at or re-run with the CLI.
 // Deviations are fractions of the truth's bounding-box diagonal, in percent.
@@ -85,7 +86,15 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--restarts")) params.segment.restarts = std::stoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--seed")) seed = static_cast<unsigned>(std::stoul(argv[i + 1]));
     else if (!std::strcmp(argv[i], "--write")) write_dir = argv[i + 1];
-    else {
+    else if (!std::strcmp(argv[i], "--param")) {  // a parameter as Params::apply() names it
+      const std::string assignment = argv[i + 1];
+      const std::size_t eq = assignment.find('=');
+      if (eq == std::string::npos) {
+        std::cerr << "quality_bench: --param expects NAME=VALUE, got '" << assignment << "'\n";
+        return 2;
+      }
+      params.apply({{assignment.substr(0, eq), std::stod(assignment.substr(eq + 1))}});
+    } else {
       std::cerr << "quality_bench: unknown option " << argv[i] << "\n";
       return 2;
     }

@@ -163,6 +163,22 @@ TEST(SurfaceCli, ACupIsOpenedWithANoteAndKeptClosedWithClosed) {
   EXPECT_FALSE(report()["extraction"]["open"].get<bool>());
 }
 
+TEST(SurfaceCli, AHatchingSceneExits4WithoutOutputAndForceWritesIt) {
+  const fs::path dir = temp_dir("hatching");
+  write_sketch(testing::hatching_sketch(10, 3), dir / "hatching.json");
+  const std::string base = "surface " + (dir / "hatching.json").string() + " -o " + (dir / "out.ply").string();
+  const CliRun refused = run_cli(base, dir);
+  EXPECT_EQ(refused.code, 4) << refused.err;
+  EXPECT_NE(refused.err.find("hatching.json"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("do not seem to depict one surface"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--force"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "out.ply"));
+
+  const CliRun forced = run_cli(base + " --force", dir);
+  EXPECT_EQ(forced.code, 0) << forced.err;
+  EXPECT_GT(read_mesh(dir / "out.ply").n_faces(), 0u);
+}
+
 TEST(SurfaceCli, BadInputsGiveExitCode3Or4AndSayWhatToDo) {
   const fs::path dir = temp_dir("bad");
   const std::string out = " -o " + (dir / "out.ply").string();

@@ -1,12 +1,14 @@
 // Stroke fit of the final surface on the real sketches (label `data`): every CASSIE (.curves) and
 // VNS (.obj) sketch in ../shared/data, through the whole pipeline with an automatic proxy built by
 // the test at a coarser resolution than the paper's (to keep the test short): the median distance
-// from the stroke points to the surface must stay under 1% of the bounding-box diagonal.
+// from the stroke points to the surface must stay under 1% of the bounding-box diagonal. And the
+// flower, a scene of single lines that depicts no surface, is refused with the default parameters.
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
+#include "surfacing/error.h"
 #include "surfacing/pipeline.h"
 #include "surfacing/sketch/io/sketch_io.h"
 
@@ -34,6 +36,7 @@ TEST_P(SurfaceData, MedianStrokeDistanceUnderOnePercent) {
   // under-resolved and its median distance rises to 1.25%; at 0.014 it is 0.56%.
   params.proxy.edge = 0.014;
   params.segment.restarts = 2;
+  params.checks.refuse_score = 0.0;  // the stroke fit of every sketch, the flower's too
   const SurfaceResult r = Surfacer(params).run(sketch);
   EXPECT_LT(r.report.stroke_distance.median, 0.01) << GetParam();
   EXPECT_GT(r.mesh.n_faces(), 0u);
@@ -41,6 +44,17 @@ TEST_P(SurfaceData, MedianStrokeDistanceUnderOnePercent) {
             << 100 * r.report.stroke_distance.median << "%, p95 " << 100 * r.report.stroke_distance.p95
             << "%, " << r.segmentation.models.size() << " regions, " << r.mesh.n_vertices()
             << " vertices, " << r.report.total_s << " s (extraction " << r.report.extraction_s << " s)\n";
+}
+
+TEST(NonSurfaceData, TheFlowerIsRefused) {
+  const fs::path file = fs::path(SKETCHSURF_DATA_DIR) / "cassie" / "flower.curves";
+  try {
+    surface(read_sketch(file));
+    FAIL() << file << " was surfaced";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Processing) << e.what();
+    EXPECT_NE(std::string(e.what()).find("do not seem to depict one surface"), std::string::npos) << e.what();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(RealSketches, SurfaceData, ::testing::ValuesIn(real_sketches()),

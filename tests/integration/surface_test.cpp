@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "surfacing/extract/extract.h"
+#include "surfacing/error.h"
 #include "surfacing/pipeline.h"
 #include "tests/support/shapes.h"
 #include "tests/unit/extract/fixtures.h"
@@ -91,6 +92,35 @@ TEST(Surface, CubeSketchThroughTheWholePipeline) {
   EXPECT_GT(r.report.total_s, 0.0);
   std::cerr << "proxy " << r.proxy.n_vertices() << " vertices; proxy " << r.report.proxy_s << " s, segment "
             << r.report.segment_s << " s, extract " << r.report.extraction_s << " s\n";
+}
+
+// Every stroke of the cube drawn three times, each pass about 0.7% of the diagonal off the others:
+// still six flat faces meeting at sharp edges, closed, no hole.
+TEST(Surface, AnOverSketchedCubeHasSixFacesAndNoHole) {
+  const Sketch sketch = testing::over_sketched(testing::cube_sketch(), 3, 0.005, 7);
+  ASSERT_EQ(sketch.strokes.size(), 54u);
+  const SurfaceResult r = surface(sketch);
+  EXPECT_EQ(r.segmentation.models.size(), 6u);
+  expect_closed_sphere(r.mesh);
+  const double diagonal = 2.0 * kHalf.norm();
+  double worst = 0.0;
+  for (auto v : r.mesh.vertices()) worst = std::max(worst, testing::box_distance(to_eigen(r.mesh.point(v)), kHalf));
+  EXPECT_LT(worst, 0.015 * diagonal);
+  EXPECT_LT(r.report.stroke_distance.p95, 0.01);
+}
+
+// Shading strokes scattered in space depict no surface: refused with a message that says why and
+// what to do, not a blob.
+TEST(Surface, AHatchingSceneIsRefusedWithAClearMessage) {
+  try {
+    surface(testing::hatching_sketch(10, 3));
+    FAIL() << "a hatching scene was surfaced";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Processing);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("do not seem to depict one surface"), std::string::npos) << what;
+    EXPECT_NE(what.find("proxy mesh"), std::string::npos) << what;
+  }
 }
 
 TEST(Surface, CylinderWithCapsHasSharpRimsAndARoundSide) {

@@ -208,6 +208,52 @@ Sketch sheet_sketch(double half, double curvature) {
   return sketch;
 }
 
+Sketch hatching_sketch(int patches, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  Sketch sketch;
+  sketch.provenance = "generated hatching";
+  for (int g = 0; g < patches; ++g) {
+    const V3 centre(u(rng), u(rng), u(rng));
+    const V3 along = V3(u(rng), u(rng), u(rng)).normalized();
+    const V3 across = along.cross(V3(u(rng), u(rng), u(rng))).normalized();
+    for (int k = 0; k < 6; ++k) {
+      const V3 a = centre + 0.03 * k * across - 0.08 * along + 0.02 * V3(u(rng), u(rng), u(rng));
+      add_stroke(sketch, segment(a, a + 0.16 * along, 0.005));
+    }
+  }
+  return sketch;
+}
+
+Sketch over_sketched(const Sketch& sketch, int passes, double offset, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n(0.0, offset);
+  std::uniform_real_distribution<double> shorter(0.0, 0.15);
+  Sketch out = sketch;
+  out.strokes.clear();
+  for (const Stroke& stroke : sketch.strokes)
+    for (int pass = 0; pass < passes; ++pass) {
+      Stroke copy = stroke;
+      const std::size_t count = stroke.points.size();
+      if (pass > 0 && count > 4) {
+        const auto cut = [&] { return static_cast<std::size_t>(shorter(rng) * static_cast<double>(count)); };
+        const std::size_t a = cut(), b = count - cut();
+        copy.points.assign(stroke.points.begin() + static_cast<std::ptrdiff_t>(a),
+                           stroke.points.begin() + static_cast<std::ptrdiff_t>(b));
+        const V3 from(n(rng), n(rng), n(rng)), to(n(rng), n(rng), n(rng));
+        for (std::size_t i = 0; i < copy.points.size(); ++i) {
+          const double t = copy.points.size() > 1 ? static_cast<double>(i) / (copy.points.size() - 1) : 0.0;
+          copy.points[i] += (1 - t) * from + t * to;
+        }
+        copy.orientations.clear();
+        copy.pressures.clear();
+        copy.timestamps_ms.clear();
+      }
+      add_stroke(out, std::move(copy));
+    }
+  return out;
+}
+
 void add_noise(Sketch& sketch, double sigma, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n(0.0, sigma);

@@ -43,6 +43,17 @@ Sketch torus_sketch(double major = 0.5, double minor = 0.2, int tube_circles = 8
 /// boundary, plus 3 interior strokes in each direction.
 Sketch sheet_sketch(double half = 0.5, double curvature = 0.4);
 
+/// A hatching scene in the unit cube (centred at the origin): `patches` groups of six short
+/// parallel strokes 0.03 apart, each group at a random place, direction and depth, as shading
+/// drawn in space; it depicts no surface.
+Sketch hatching_sketch(int patches, unsigned seed);
+
+/// Every stroke drawn `passes` times, as people over-sketch mid-air: the first pass whole, each
+/// other one a span of it (up to 15% shorter at either end) moved by an offset that changes
+/// linearly along it between two random vectors (standard deviation `offset` per axis).
+/// Ids renumbered 0, 1, ...
+Sketch over_sketched(const Sketch& sketch, int passes, double offset, unsigned seed);
+
 /// Adds independent Gaussian noise of standard deviation `sigma` to every point.
 void add_noise(Sketch& sketch, double sigma, unsigned seed);
 /// Scales by `s` then translates by `t` every point (and the mirror plane).

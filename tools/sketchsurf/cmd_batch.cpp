@@ -1,7 +1,7 @@
 // sketchsurf batch SKETCH...|DIR... -o OUT_DIR [--jobs N] [--format ply|obj|glb|gltf] [--seed N]
-// [--threads N] [--keep-all-strokes] [--closed]: `surface` on every sketch, each in a process of its own, so
-// that a failure, a crash or an out-of-memory kill in one never stops the others; a summary table
-// at the end, exit 0 only when every sketch was surfaced.
+// [--threads N] [--keep-all-strokes] [--closed] [--force]: `surface` on every sketch, each in a
+// process of its own, so that a failure, a crash or an out-of-memory kill in one never stops the
+// others; a summary table at the end, exit 0 only when every sketch was surfaced.
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -47,6 +47,7 @@ struct BatchOptions {
   std::optional<unsigned> threads;
   bool keep_all_strokes = false;
   bool closed = false;
+  bool force = false;
 };
 
 /// One sketch to surface: where it is, and its outputs' path under OUT_DIR without extension
@@ -272,6 +273,7 @@ void run_batch(const BatchOptions& opt, const GlobalOptions& global) {
       if (opt.seed) args.insert(args.end(), {"--seed", std::to_string(*opt.seed)});
       if (opt.keep_all_strokes) args.push_back("--keep-all-strokes");
       if (opt.closed) args.push_back("--closed");
+      if (opt.force) args.push_back("--force");
       running[spawn(exe, args, base.string() + ".log")] = {next, Clock::now()};
       outcomes[next].ran = true;
       ++next;
@@ -359,6 +361,7 @@ void add_batch_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
                 "Surface every stroke, also those that seem to depict no surface");
   cmd->add_flag("--closed", opt->closed, "Keep every surface closed: do not open it at rims found in the strokes");
+  cmd->add_flag("--force", opt->force, "Write surfaces also where the strokes do not seem to depict one");
   cmd->callback([opt, &global] { run_batch(*opt, global); });
 }
 

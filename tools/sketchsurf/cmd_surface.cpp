@@ -37,6 +37,7 @@ struct SurfaceCommandOptions {
   std::optional<unsigned> threads;
   bool keep_all_strokes = false;
   bool closed = false;
+  bool force = false;
   bool with_strokes = false;
 };
 
@@ -134,6 +135,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                       {"final_energy", energy_terms(ex.optimization.final)},
                       {"seam_vertices", ex.seam_vertices},
                       {"corner_vertices", ex.corner_vertices},
+                      {"held_vertices", ex.optimization.held_vertices},
                       {"sharp_vertices", ex.sharp_vertices},
                       {"trimmed_faces", ex.trimmed_faces},
                       {"open", ex.open},
@@ -146,6 +148,10 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
       {"checks", checks_json(rep.checks)},
       {"decorations", decorations_json(rep.decorations)},
       {"openings", openings_json(rep.openings)},
+      {"opening_failure", rep.opening_failure},
+      {"consolidation", {{"points", rep.consolidation.points},
+                         {"strokes", rep.consolidation.strokes},
+                         {"max_shift", rep.consolidation.max_shift}}},
       {"symmetry", rep.symmetry ? nlohmann::json{{"normal", {rep.symmetry->plane.normal.x(), rep.symmetry->plane.normal.y(),
                                                              rep.symmetry->plane.normal.z()}},
                                                  {"offset", rep.symmetry->plane.offset},
@@ -187,6 +193,7 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
   if (opt.seed) params.segment.seed = *opt.seed;
   if (opt.keep_all_strokes) params.prepare.ignore_decorations = false;
   if (opt.closed) params.prepare.open_rims = false;
+  if (opt.force) params.checks.refuse_score = 0.0;
   if (opt.threads)
     params.segment.threads = params.proxy.threads = params.extract.energy.threads =
         params.extract.seams.threads = *opt.threads;
@@ -214,8 +221,9 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     try {
       return Surfacer(params, stderr_progress(global)).run(sketch, proxy ? &*proxy : nullptr);
     } catch (const Error& e) {  // what is wrong with the sketch, said with its file name
-      if (e.kind() != ErrorKind::Input) throw;
-      throw Error::input(opt.sketch, e.what());
+      if (e.kind() == ErrorKind::Input) throw Error::input(opt.sketch, e.what());
+      if (e.kind() == ErrorKind::Processing) throw Error::processing(opt.sketch + ": " + e.what());
+      throw;
     }
   }();
 
@@ -251,6 +259,10 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     for (const Opening& o : result.report.openings) std::cerr << " " << o.id;
     std::cerr << "); --closed keeps the surface closed\n";
   }
+  if (!global.quiet && !result.report.opening_failure.empty())
+    std::cerr << opt.sketch << ": note: kept the surface closed at the rim(s) found in the strokes ("
+              << result.report.opening_failure << "); mark the rim strokes with --boundary-strokes to "
+              << "open it\n";
   if (!global.quiet && result.report.symmetry) {
     // Four digits, round-off noise shown as 0: the plane as a user would type it.
     const auto num = [&](double v, double noise) {
@@ -302,6 +314,9 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--closed", opt->closed,
                 "Keep the surface closed: do not open it at rims found in the strokes (a closed loop "
                 "with nothing drawn across or beyond it, such as a cup's top)");
+  cmd->add_flag("--force", opt->force,
+                "Write the surface even when the strokes do not seem to depict one (a hatching, "
+                "writing or painterly scene: exit 4 otherwise)");
   cmd->add_flag("--with-strokes", opt->with_strokes,
                 "In a .glb/.gltf output, also the strokes, as a second mesh of line strips");
   cmd->callback([opt, &global] { run_surface(*opt, global); });
