@@ -1,25 +1,21 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package sketchsurf needs, then configures and builds it.
 # Idempotent and non-interactive; run as root (or with sudo available).
-#   tools/setup.sh [--no-build] [--portable] [--build-dir DIR] [--build-type TYPE] [-- extra cmake args]
-# Builds for this machine's CPU (SKETCHSURF_NATIVE, -march=native); --portable for binaries that run
-# on any x86-64 (to copy to other machines, or to package).
+#   tools/setup.sh [--no-build] [--build-dir DIR] [--build-type TYPE] [-- extra cmake args]
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="$here/build"
 build_type=Release
 do_build=1
-native=ON
 extra=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --no-build) do_build=0 ;;
-    --portable) native=OFF ;;
     --build-dir) build_dir="$2"; shift ;;
     --build-type) build_type="$2"; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,4p' "$0"; exit 0 ;;
     *) echo "setup.sh: unknown option '$1'" >&2; exit 2 ;;
   esac
   shift
@@ -53,7 +49,6 @@ else
 fi
 
 if [ "$do_build" -eq 1 ]; then
-  cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" \
-    -DSKETCHSURF_NATIVE="$native" "${extra[@]}" >/dev/null
+  cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" "${extra[@]}" >/dev/null
   cmake --build "$build_dir" -j "$(nproc)"
 fi

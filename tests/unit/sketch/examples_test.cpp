@@ -18,7 +18,10 @@ TEST(BundledExamples, MatchTheirGenerators) {
     for (std::size_t i = 0; i < actual.strokes.size(); ++i) {
       const Stroke &a = actual.strokes[i], &b = expected.strokes[i];
       ASSERT_EQ(a.points.size(), b.points.size());
-      for (std::size_t k = 0; k < a.points.size(); ++k) EXPECT_EQ(a.points[k], b.points[k]);
+      // Within 1e-12, not bit for bit: a build for another CPU (SKETCHSURF_NATIVE) fuses
+      // multiply-adds in the generators and moves the last bit of some coordinates.
+      for (std::size_t k = 0; k < a.points.size(); ++k)
+        EXPECT_LT((a.points[k] - b.points[k]).norm(), 1e-12) << "point " << k << " of stroke " << i;
       EXPECT_EQ(a.boundary, b.boundary);
       EXPECT_EQ(a.ignored, b.ignored);
     }
