@@ -199,14 +199,24 @@ class EventReader {
       a.text = string(e.value("value", json()), i, ".value");
       const auto& tools = track_tool_names();
       if (std::find(tools.begin(), tools.end(), a.text) == tools.end())
-        fail(i, ".value", "unknown tool \"" + a.text + "\" (tools: draw, erase, boundary, ignore)");
-    } else if (a.name == "mirror") {
+        fail(i, ".value", "unknown tool \"" + a.text + "\" (tools: draw, erase, boundary, ignore, plane)");
+    } else if (a.name == "mirror" || a.name == "plane") {
       only(e, i, {"t", "action", "plane"});
       a.values = numbers(e.value("plane", json()), 4, i, ".plane");
       const double n = Eigen::Vector3d(a.values[0], a.values[1], a.values[2]).norm();
       if (!(n > 1e-12)) fail(i, ".plane", "the plane's normal (the first three numbers) is zero");
       for (double& v : a.values) v /= n;
-    } else if (a.name == "param") {
+    } else if (a.name == "rotation") {
+      only(e, i, {"t", "action", "center", "axis", "count"});
+      a.values = numbers(e.value("center", json()), 3, i, ".center");
+      const auto axis = numbers(e.value("axis", json()), 3, i, ".axis");
+      if (!(Eigen::Vector3d(axis[0], axis[1], axis[2]).norm() > 1e-12)) fail(i, ".axis", "the axis is zero");
+      const double count = number(e.value("count", json()), i, ".count");
+      if (count != std::floor(count) || count < 2 || count > 360)
+        fail(i, ".count", "expected an integer from 2 to 360");
+      a.values.insert(a.values.end(), axis.begin(), axis.end());
+      a.values.push_back(count);
+    } else if (a.name == "param" || a.name == "aid") {
       only(e, i, {"t", "action", "name", "value"});
       a.text = string(e.value("name", json()), i, ".name");
       a.values = {number(e.value("value", json()), i, ".value")};
@@ -243,8 +253,13 @@ nlohmann::ordered_json event_json(const TrackEvent& e) {
     const TrackAction& a = *e.action;
     j["action"] = a.name;
     if (a.name == "tool") j["value"] = a.text;
-    if (a.name == "mirror") j["plane"] = a.values;
-    if (a.name == "param") {
+    if (a.name == "mirror" || a.name == "plane") j["plane"] = a.values;
+    if (a.name == "rotation" && a.values.size() == 7) {
+      j["center"] = {a.values[0], a.values[1], a.values[2]};
+      j["axis"] = {a.values[3], a.values[4], a.values[5]};
+      j["count"] = static_cast<int>(a.values[6]);
+    }
+    if (a.name == "param" || a.name == "aid") {
       j["name"] = a.text;
       j["value"] = a.values.empty() ? 0.0 : a.values[0];
     }
@@ -281,12 +296,13 @@ std::optional<Button> parse_button(std::string_view name) {
 const std::vector<std::string>& track_action_names() {
   static const std::vector<std::string> names{"tool",  "undo",   "redo",         "clear",
                                               "surface", "cancel", "clear_mirror", "mirror",
-                                              "param", "open"};
+                                              "param", "open", "aid", "plane", "rotation",
+                                              "clear_rotation"};
   return names;
 }
 
 const std::vector<std::string>& track_tool_names() {
-  static const std::vector<std::string> names{"draw", "erase", "boundary", "ignore"};
+  static const std::vector<std::string> names{"draw", "erase", "boundary", "ignore", "plane"};
   return names;
 }
 

@@ -21,11 +21,15 @@ namespace sketchsurf::input {
 
 /// Something done in the panel (or by a key) rather than with the controller. The actions and
 /// their arguments:
-///   tool   text = "draw" | "erase" | "boundary" | "ignore"
-///   undo, redo, clear, surface, cancel, clear_mirror    (no arguments)
+///   tool   text = "draw" | "erase" | "boundary" | "ignore" | "plane"
+///   undo, redo, clear, surface, cancel, clear_mirror, clear_rotation    (no arguments)
 ///   mirror values = {nx, ny, nz, d}: the plane n . x + d = 0 (n is normalised when read)
 ///   param  text = a Params name ("segment.epsilon"), values = {value}
 ///   open   text = a sketch file
+///   aid    text = "plane_guide" | "snap" | "oversketch" | "straight" (values = {0 or 1}),
+///          "smoothing" (rounds), "snap_radius" (fraction of the reference size)
+///   plane  values = {nx, ny, nz, d}: the drawing plane (n normalised when read)
+///   rotation values = {cx, cy, cz, ax, ay, az, count}: the n-fold rotational pattern
 struct TrackAction {
   std::string name;            ///< one of track_action_names()
   std::string text;            ///< tool name, parameter name or file, by action
@@ -49,7 +53,7 @@ struct Track {
 
 /// The action names a track may hold, in the order of the comment above.
 const std::vector<std::string>& track_action_names();
-/// The tool names of the "tool" action: draw, erase, boundary, ignore.
+/// The tool names of the "tool" action: draw, erase, boundary, ignore, plane.
 const std::vector<std::string>& track_tool_names();
 
 /// Parses the text of a track. Throws Error (Input) naming `name`, the line and the event

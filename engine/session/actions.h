@@ -16,9 +16,13 @@ std::string apply_action(SketchSession& session, const input::TrackAction& actio
 
 /// Shorthands that build the actions the panel records.
 input::TrackAction tool_action(Tool tool);
-input::TrackAction simple_action(const std::string& name);  ///< undo, redo, clear, surface, ...
+input::TrackAction simple_action(const std::string& name);  ///< undo, redo, clear, surface, clear_rotation, ...
 input::TrackAction mirror_action(const Plane& plane);
 input::TrackAction param_action(const std::string& name, double value);
+/// An aid on (1) or off (0), or its value ("smoothing" rounds, "snap_radius").
+input::TrackAction aid_action(const std::string& name, double value);
+input::TrackAction plane_action(const Plane& plane);
+input::TrackAction rotation_action(const RotationPattern& pattern);
 input::TrackAction open_action(const std::string& file);
 
 }  // namespace sketchsurf::session

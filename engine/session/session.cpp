@@ -13,6 +13,9 @@
 #include <unistd.h>
 #endif
 
+#include "engine/session/drawing_plane.h"
+#include "engine/session/pattern.h"
+#include "engine/session/stroke_aids.h"
 #include "surfacing/error.h"
 #include "surfacing/sketch/io/mesh_io.h"
 #include "surfacing/sketch/io/sketch_io.h"
@@ -25,14 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
-}
-
-/// Distance from p to the segment [a, b].
-double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
 }
 
 /// Distance along the ray to the triangle (Moller-Trumbore), if it hits in front of the origin.
@@ -55,17 +50,6 @@ std::optional<double> ray_triangle(const Eigen::Vector3d& o, const Eigen::Vector
   return t;
 }
 
-/// The mirror image of a stroke in `plane`: points reflected, orientations M R M (M the
-/// reflection), so that they stay rotations and point along the reflected direction.
-Stroke mirrored(const Stroke& stroke, const Plane& plane) {
-  Stroke out = stroke;
-  for (auto& p : out.points) p = plane.reflect(p);
-  const Eigen::Matrix3d m =
-      Eigen::Matrix3d::Identity() - 2.0 * plane.normal * plane.normal.transpose();
-  for (auto& q : out.orientations) q = Eigen::Quaterniond(m * q.toRotationMatrix() * m).normalized();
-  return out;
-}
-
 void check_non_negative(double v, const char* name, std::string* why, bool& ok) {
   if (ok && (!(v >= 0.0) || !std::isfinite(v))) {
     if (why) *why = std::string(name) + " must be >= 0 and finite";
@@ -81,12 +65,13 @@ std::string_view tool_name(Tool tool) {
     case Tool::Erase: return "erase";
     case Tool::MarkBoundary: return "boundary";
     case Tool::MarkIgnored: return "ignore";
+    case Tool::PlacePlane: return "plane";
   }
   return "?";
 }
 
 std::optional<Tool> parse_tool(std::string_view name) {
-  for (Tool t : {Tool::Draw, Tool::Erase, Tool::MarkBoundary, Tool::MarkIgnored})
+  for (Tool t : {Tool::Draw, Tool::Erase, Tool::MarkBoundary, Tool::MarkIgnored, Tool::PlacePlane})
     if (tool_name(t) == name) return t;
   return std::nullopt;
 }
@@ -96,6 +81,18 @@ bool DrawingOptions::valid(std::string* why) const {
   check_non_negative(min_spacing, "min_spacing", why, ok);
   check_non_negative(pick_radius, "pick_radius", why, ok);
   check_non_negative(width, "width", why, ok);
+  check_non_negative(plane_band, "plane_band", why, ok);
+  check_non_negative(snap_radius, "snap_radius", why, ok);
+  check_non_negative(oversketch_distance, "oversketch_distance", why, ok);
+  if (ok && (!plane.normal.allFinite() || std::abs(plane.normal.norm() - 1.0) > 1e-9 ||
+             !std::isfinite(plane.offset))) {
+    if (why) *why = "plane must have a unit normal and a finite offset";
+    ok = false;
+  }
+  if (ok && (smoothing < 0 || smoothing > 1000)) {
+    if (why) *why = "smoothing must be from 0 to 1000 rounds";
+    ok = false;
+  }
   return ok;
 }
 
@@ -172,14 +169,35 @@ void SketchSession::apply(const input::ControllerState& state) {
       add_point(state, true);
       finish_stroke();
     }
+  } else if (tool_ == Tool::PlacePlane) {
+    if (down && !was) place_plane_point(state);
   } else if (down) {
     touch(state, !was);
   }
   last_ = state;
 }
 
+void SketchSession::place_plane_point(const input::ControllerState& state) {
+  if (!state.tracked || !state.pose.position.allFinite()) return;
+  plane_points_.push_back(state.pose.position);
+  if (plane_points_.size() < 3) return;
+  const std::vector<Eigen::Vector3d> points = std::move(plane_points_);
+  plane_points_.clear();
+  // Three points on a line place nothing; the user clicks again.
+  Plane plane;
+  try {
+    plane = plane_through(points[0], points[1], points[2]);
+  } catch (const Error&) {
+    return;
+  }
+  drawing_.plane = plane;
+  drawing_.plane_guide = true;
+  tool_ = Tool::Draw;
+}
+
 void SketchSession::set_tool(Tool tool) {
   if (live_active_) finish_stroke();
+  plane_points_.clear();
   tool_ = tool;
 }
 
@@ -194,8 +212,9 @@ void SketchSession::begin_stroke(const input::ControllerState& state) {
 
 void SketchSession::add_point(const input::ControllerState& state, bool last) {
   if (!state.tracked) return;
-  const Eigen::Vector3d& p = state.pose.position;
+  Eigen::Vector3d p = state.pose.position;
   if (!p.allFinite()) return;
+  if (drawing_.plane_guide) p = guide_to_plane(drawing_.plane, p, drawing_.plane_band * reference_size_);
   if (!stroke_.points.empty()) {
     const double d = (p - stroke_.points.back()).norm();
     if (last ? d == 0.0 : d < drawing_.min_spacing * reference_size_) return;
@@ -213,7 +232,8 @@ void SketchSession::refresh_live() {
   live_.clear();
   if (live_active_) {
     live_.push_back(stroke_);
-    if (sketch_.mirror) live_.push_back(mirrored(stroke_, *sketch_.mirror));
+    for (Stroke& image : pattern_images(stroke_, sketch_.mirror, sketch_.rotation))
+      live_.push_back(std::move(image));
   }
   ++live_revision_;
 }
@@ -221,8 +241,39 @@ void SketchSession::refresh_live() {
 void SketchSession::finish_stroke() {
   live_active_ = false;
   refresh_live();
-  if (stroke_.points.size() >= 2) add_stroke(std::move(stroke_));
+  if (stroke_.points.size() >= 2) commit_stroke(std::move(stroke_));
   stroke_ = Stroke{};
+}
+
+void SketchSession::commit_stroke(Stroke stroke) {
+  if (drawing_.straight) straighten(stroke);
+  smooth_stroke(stroke, drawing_.smoothing);
+  const double radius = drawing_.snap_radius * reference_size_;
+  if (drawing_.oversketch) {
+    OversketchOptions options;
+    options.end_radius = radius;
+    options.max_distance = std::max(radius, drawing_.oversketch_distance * reference_size_);
+    if (const auto target = oversketch_target(sketch_.strokes, stroke, options)) {
+      // The stroke and each of its pattern images correct the stroke each runs along.
+      Edit edit;
+      edit.name = "over-sketch";
+      std::vector<Stroke> styles{stroke};
+      for (Stroke& image : pattern_images(stroke, sketch_.mirror, sketch_.rotation))
+        styles.push_back(std::move(image));
+      std::vector<bool> changed(sketch_.strokes.size(), false);
+      for (std::size_t k = 0; k < styles.size(); ++k) {
+        const auto index = k == 0 ? target : oversketch_target(sketch_.strokes, styles[k], options);
+        if (!index || changed[*index]) continue;
+        changed[*index] = true;
+        const Stroke& old = sketch_.strokes[*index];
+        edit.changes.push_back({*index, old, oversketch(old, styles[k], OversketchOptions{}.blend)});
+      }
+      commit(std::move(edit));
+      return;
+    }
+  }
+  if (drawing_.snap) snap_ends(stroke, sketch_.strokes, radius);
+  add_stroke(std::move(stroke));
 }
 
 void SketchSession::touch(const input::ControllerState& state, bool pressed_now) {
@@ -238,7 +289,8 @@ void SketchSession::touch(const input::ControllerState& state, bool pressed_now)
     case Tool::MarkIgnored:
       if (pressed_now) set_ignored(*id, !s.ignored);
       break;
-    case Tool::Draw: break;
+    case Tool::Draw:
+    case Tool::PlacePlane: break;
   }
 }
 
@@ -282,6 +334,7 @@ void SketchSession::play(const Edit& edit, bool forwards) {
     if (!from && to) strokes.insert(strokes.begin() + std::ptrdiff_t(c->index), *to);
   }
   if (edit.mirror_changed) sketch_.mirror = forwards ? edit.mirror_after : edit.mirror_before;
+  if (edit.rotation_changed) sketch_.rotation = forwards ? edit.rotation_after : edit.rotation_before;
   changed();
 }
 
@@ -328,14 +381,13 @@ std::int64_t SketchSession::add_stroke(Stroke stroke) {
   edit.name = "draw";
   const std::int64_t id = next_id();
   stroke.id = id;
-  std::optional<Stroke> image;
-  if (sketch_.mirror) {
-    image = mirrored(stroke, *sketch_.mirror);
-    image->id = id + 1;
-  }
+  std::vector<Stroke> images = pattern_images(stroke, sketch_.mirror, sketch_.rotation);
   const std::size_t n = sketch_.strokes.size();
   edit.changes.push_back({n, std::nullopt, std::move(stroke)});
-  if (image) edit.changes.push_back({n + 1, std::nullopt, std::move(*image)});
+  for (std::size_t k = 0; k < images.size(); ++k) {
+    images[k].id = id + 1 + std::int64_t(k);
+    edit.changes.push_back({n + 1 + k, std::nullopt, std::move(images[k])});
+  }
   commit(std::move(edit));
   return id;
 }
@@ -393,6 +445,23 @@ bool SketchSession::set_mirror(const std::optional<Plane>& plane) {
   return true;
 }
 
+bool SketchSession::set_rotation(const std::optional<RotationPattern>& pattern) {
+  std::optional<RotationPattern> checked;
+  if (pattern) checked = checked_rotation(*pattern);
+  const auto& now = sketch_.rotation;
+  if (now.has_value() == checked.has_value() &&
+      (!now || (now->center == checked->center && now->axis == checked->axis && now->count == checked->count)))
+    return false;
+  if (live_active_) finish_stroke();
+  Edit edit;
+  edit.name = checked ? "rotation" : "clear rotation";
+  edit.rotation_changed = true;
+  edit.rotation_before = sketch_.rotation;
+  edit.rotation_after = checked;
+  commit(std::move(edit));
+  return true;
+}
+
 bool SketchSession::clear() {
   if (sketch_.strokes.empty()) return false;
   if (live_active_) finish_stroke();
@@ -409,10 +478,7 @@ std::optional<std::int64_t> SketchSession::nearest_stroke(const Eigen::Vector3d&
   std::optional<std::int64_t> best;
   double best_distance = radius;
   for (const Stroke& s : sketch_.strokes) {
-    double d = std::numeric_limits<double>::infinity();
-    if (s.points.size() == 1) d = (p - s.points[0]).norm();
-    for (std::size_t i = 0; i + 1 < s.points.size(); ++i)
-      d = std::min(d, segment_distance(p, s.points[i], s.points[i + 1]));
+    const double d = distance_to_stroke(p, s);
     if (d <= best_distance) {
       best_distance = d;
       best = s.id;

@@ -32,14 +32,16 @@ enum class Tool {
   Erase,         ///< erases every stroke the controller touches while the trigger is held
   MarkBoundary,  ///< toggles "boundary" (edge of an open surface) on the stroke touched at press
   MarkIgnored,   ///< toggles "ignored" (the surface must not follow it) on the stroke touched
+  PlacePlane,    ///< three presses place the drawing plane through the three points (then Draw)
 };
 
-/// "draw", "erase", "boundary", "ignore".
+/// "draw", "erase", "boundary", "ignore", "plane".
 std::string_view tool_name(Tool tool);
 /// The tool named `name` (as tool_name() spells it); empty when unknown.
 std::optional<Tool> parse_tool(std::string_view name);
 
-/// How strokes are drawn and touched. Lengths are fractions of the session's reference size.
+/// How strokes are drawn and touched, and the drawing aids (each on or off). Lengths are
+/// fractions of the session's reference size.
 struct DrawingOptions {
   double min_spacing = 0.002;  ///< a point closer than this to the previous kept point is dropped
                                ///< (the last point of a stroke is always kept)
@@ -47,7 +49,21 @@ struct DrawingOptions {
   double width = 0.005;        ///< brush width stored with new strokes
   std::array<float, 4> color{0.1f, 0.1f, 0.1f, 1.0f};  ///< RGBA of new strokes
 
-  /// False (with the reason in `why`) when a length is negative or not finite.
+  // Drawing aids (drawing_plane.h, stroke_aids.h; patterns are the sketch's, see set_mirror).
+  Plane plane{Eigen::Vector3d::UnitZ(), 0.0};  ///< the drawing plane (unit normal; the mouse's
+                                               ///< cursor ray lands on it)
+  bool plane_guide = false;    ///< points drawn within plane_band of the plane are projected onto it
+  double plane_band = 0.03;    ///< the guide's band on each side of the plane
+  bool snap = false;           ///< stroke ends within snap_radius of a stroke are moved onto it
+  double snap_radius = 0.02;   ///< the mouse sets it from a radius in pixels (the studio's view)
+  bool oversketch = false;     ///< a stroke drawn along part of a stroke replaces that part
+  double oversketch_distance = 0.03;  ///< every point of it within this of the stroke (its ends
+                                      ///< within snap_radius)
+  int smoothing = 0;           ///< rounds of Kuhn's iterative smoothing of each new stroke (0: off)
+  bool straight = false;       ///< each new stroke becomes the segment between its ends
+
+  /// False (with the reason in `why`) when a length is negative or not finite, the plane's
+  /// normal not unit or its offset not finite, or smoothing negative or above 1000.
   bool valid(std::string* why) const;
 };
 
@@ -99,16 +115,23 @@ class SketchSession {
 
   // --- controller input -------------------------------------------------------------------
   /// Applies one controller sample: the trigger (Draw button) drives the active tool, Undo and
-  /// Redo act when pressed. Samples must come in time order.
+  /// Redo act when pressed. Samples must come in time order. With the plane guide on, each point
+  /// drawn within its band is projected onto the drawing plane. When the trigger is released the
+  /// stroke is finished: made straight, smoothed, then either over-sketched onto the stroke it
+  /// runs along (that stroke is changed, no stroke added) or its ends snapped; then it is added
+  /// with its pattern images. One undo step per stroke, whatever the aids did.
   void apply(const input::ControllerState& state);
   Tool tool() const { return tool_; }
   /// Switches tools; a stroke in progress is finished first.
   void set_tool(Tool tool);
   bool drawing_in_progress() const { return live_active_; }
+  /// The points placed so far by the PlacePlane tool (0 to 2).
+  const std::vector<Eigen::Vector3d>& plane_points() const { return plane_points_; }
 
   // --- edits (each one undoable) ------------------------------------------------------------
-  /// Adds a finished stroke (with its mirror image when the mirror is on), giving it the next
-  /// free id; returns that id. Strokes with fewer than 2 points are refused (returns -1).
+  /// Adds a finished stroke (with its images under the mirror and the rotation, when on), giving
+  /// it the next free id (the images the ids after it); returns that id. Strokes with fewer than
+  /// 2 points are refused (returns -1). The aids are not applied (see finish order in apply()).
   std::int64_t add_stroke(Stroke stroke);
   /// Each returns false (and changes nothing) when no stroke has the id or nothing would change.
   bool erase_stroke(std::int64_t id);
@@ -117,6 +140,10 @@ class SketchSession {
   /// Sets (or, with none, clears) the mirror plane: strokes drawn from now on get their mirror
   /// image, and the Surfacer surfaces one half and mirrors it. Returns false when unchanged.
   bool set_mirror(const std::optional<Plane>& plane);
+  /// Sets (or, with none, clears) the rotational pattern: strokes drawn from now on are repeated
+  /// count times about the axis. Stored in the sketch (.json). Returns false when unchanged.
+  /// Throws Error (Usage) for a zero axis or a count outside 2..360.
+  bool set_rotation(const std::optional<RotationPattern>& pattern);
   /// Erases every stroke. Returns false when there is none.
   bool clear();
 
@@ -200,6 +227,8 @@ class SketchSession {
     std::vector<StrokeChange> changes;
     bool mirror_changed = false;
     std::optional<Plane> mirror_before, mirror_after;
+    bool rotation_changed = false;
+    std::optional<RotationPattern> rotation_before, rotation_after;
   };
   struct Job;
 
@@ -215,7 +244,10 @@ class SketchSession {
   void begin_stroke(const input::ControllerState& state);
   void add_point(const input::ControllerState& state, bool last);
   void finish_stroke();
+  /// The finished stroke through the aids (straight, smoothing, over-sketch or snap), committed.
+  void commit_stroke(Stroke stroke);
   void refresh_live();
+  void place_plane_point(const input::ControllerState& state);
   void touch(const input::ControllerState& state, bool pressed_now);
   // Autosave writer.
   void schedule_autosave();
@@ -230,6 +262,7 @@ class SketchSession {
   input::ControllerState last_;
   bool live_active_ = false;
   Stroke stroke_;              // the stroke in progress
+  std::vector<Eigen::Vector3d> plane_points_;  // PlacePlane's clicks so far
   std::vector<Stroke> live_;   // it and its mirror image, for drawing
   std::filesystem::path file_;
   std::shared_ptr<const TriMesh> proxy_;

@@ -44,6 +44,15 @@ struct Plane {
   }
 };
 
+/// An n-fold rotational pattern: every stroke drawn is repeated `count` times about the axis
+/// through `center` along `axis`, 360/count degrees apart (Kuhn 2009 Fig. 43; Open Brush's
+/// multi-mirror). Stored with the sketch for the studio; the surfacer does not use it.
+struct RotationPattern {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< a point on the axis
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitY();   ///< the axis direction, unit
+  int count = 2;                                     ///< copies, the stroke drawn included, >= 2
+};
+
 /// Axis-aligned bounding box; empty when min > max.
 struct BoundingBox {
   Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -61,6 +70,7 @@ struct BoundingBox {
 struct Sketch {
   std::vector<Stroke> strokes;
   std::optional<Plane> mirror;  ///< symmetry plane, if the sketch is symmetric
+  std::optional<RotationPattern> rotation;  ///< rotational pattern the sketch was drawn with
   std::string units = "m";      ///< unit of the coordinates ("m" for every reader we have)
   std::string provenance;       ///< where it came from (file name, application)
   /// Surfacing parameters stored with the sketch, as dotted names ("segment.epsilon") to values.

@@ -84,14 +84,14 @@ struct Value {
 
 /// Where in the document a frame of the stack is.
 enum class Where {
-  Document, Root, Mirror, Normal, Params, Strokes, Stroke, Points, Point, Orientations,
+  Document, Root, Mirror, Normal, Rotation, Center, Axis, Params, Strokes, Stroke, Points, Point, Orientations,
   Orientation, Pressures, Timestamps, Color, Skip
 };
 
 // Bits of the keys seen in one object, to refuse duplicates.
 enum RootKey : std::uint32_t {
   kKeyFormat = 1, kKeyVersion = 2, kKeyUnits = 4, kKeyProvenance = 8, kKeyMirror = 16,
-  kKeyParams = 32, kKeyStrokes = 64
+  kKeyParams = 32, kKeyStrokes = 64, kKeyRotation = 128
 };
 enum StrokeKey : std::uint32_t {
   kKeyId = 1, kKeyPoints = 2, kKeyOrientations = 4, kKeyPressures = 8, kKeyTimestamps = 16,
@@ -99,6 +99,7 @@ enum StrokeKey : std::uint32_t {
   kKeyIgnored = 1024
 };
 enum MirrorKey : std::uint32_t { kKeyNormal = 1, kKeyOffset = 2 };
+enum RotationKey : std::uint32_t { kKeyCenter = 1, kKeyAxis = 2, kKeyCount = 4 };
 
 struct Frame {
   Frame(Where w, bool is_array) : where(w), array(is_array) {}
@@ -242,6 +243,12 @@ class SketchSax {
         if (f.index >= 3) fail(path(), "a normal has 3 components");
         mirror_normal_[f.index] = finite_number(v);
         break;
+      case Where::Rotation: rotation_value(v); break;
+      case Where::Center:
+      case Where::Axis:
+        if (f.index >= 3) fail(path(), "expected 3 numbers [x, y, z]");
+        (f.where == Where::Center ? rotation_.center : rotation_.axis)[f.index] = finite_number(v);
+        break;
       case Where::Params: params_value(v); break;
       case Where::Strokes:
         if (v.kind != Value::Kind::Object) expected("a stroke object", v);
@@ -313,6 +320,13 @@ class SketchSax {
       if (v.kind != Value::Kind::Object) expected("null or {\"normal\": [x, y, z], \"offset\": d}", v);
       mirror_normal_.setConstant(std::numeric_limits<double>::quiet_NaN());
       push(Where::Mirror, false);
+    } else if (k == "rotation") {
+      claim(kKeyRotation);
+      if (v.kind == Value::Kind::Null) return;
+      if (v.kind != Value::Kind::Object)
+        expected("null or {\"center\": [x, y, z], \"axis\": [x, y, z], \"count\": n}", v);
+      rotation_ = RotationPattern{};
+      push(Where::Rotation, false);
     } else if (k == "params") {
       claim(kKeyParams);
       if (v.kind != Value::Kind::Object) expected("an object of parameters", v);
@@ -337,6 +351,22 @@ class SketchSax {
       mirror_offset_ = finite_number(v);
     } else {
       unknown(v, "mirror." + k);
+    }
+  }
+
+  void rotation_value(const Value& v) {
+    const std::string& k = stack_.back().key;
+    if (k == "center" || k == "axis") {
+      claim(k == "center" ? kKeyCenter : kKeyAxis);
+      if (v.kind != Value::Kind::Array) expected("[x, y, z]", v);
+      push(k == "center" ? Where::Center : Where::Axis, true);
+    } else if (k == "count") {
+      claim(kKeyCount);
+      const auto count = v.as_int64();
+      if (!count || *count < 2 || *count > 360) expected("an integer count from 2 to 360", v);
+      rotation_.count = static_cast<int>(*count);
+    } else {
+      unknown(v, "rotation." + k);
     }
   }
 
@@ -409,11 +439,15 @@ class SketchSax {
         done_ = true;
         break;
       case Where::Mirror: end_mirror(f); break;
+      case Where::Rotation: end_rotation(f); break;
       case Where::Normal:
+      case Where::Center:
+      case Where::Axis:
       case Where::Point:
       case Where::Orientation:
       case Where::Color: {
-        const std::size_t want = f.where == Where::Normal ? 3 : f.where == Where::Point ? 3 : 4;
+        const std::size_t want =
+            f.where == Where::Orientation || f.where == Where::Color ? 4 : 3;
         if (f.index != want)
           fail(path(stack_.size() - 1), "expected " + std::to_string(want) + " numbers, got " +
                                             std::to_string(f.index));
@@ -450,6 +484,18 @@ class SketchSax {
     sketch_.mirror = plane;
   }
 
+  void end_rotation(const Frame& f) {
+    const std::string at = path(stack_.size() - 1);
+    if (!(f.seen & kKeyCenter)) fail(at, "no \"center\"");
+    if (!(f.seen & kKeyAxis)) fail(at, "no \"axis\"");
+    if (!(f.seen & kKeyCount)) fail(at, "no \"count\"");
+    const double norm = rotation_.axis.norm();
+    if (!(norm > 1e-12) || !std::isfinite(norm)) fail(at, "the rotation axis is zero");
+    // A unit axis (as write_json writes it) is kept bit for bit.
+    if (std::abs(norm - 1.0) > 4 * std::numeric_limits<double>::epsilon()) rotation_.axis /= norm;
+    sketch_.rotation = rotation_;
+  }
+
   void end_stroke(const Frame& f) {
     const std::string at = path(stack_.size() - 1);
     if (!(f.seen & kKeyPoints)) fail(at, "no \"points\"");
@@ -477,6 +523,7 @@ class SketchSax {
   double tuple_[4] = {0, 0, 0, 0};
   Eigen::Vector3d mirror_normal_ = Eigen::Vector3d::Zero();
   double mirror_offset_ = 0.0;
+  RotationPattern rotation_;
   bool done_ = false;
 };
 
@@ -907,6 +954,21 @@ void write_json(const Sketch& sketch, const std::filesystem::path& file) {
     head += "}";
   } else {
     head += "null";
+  }
+  if (sketch.rotation) {  // only when there is one: sketches without keep their bytes
+    const auto triple = [&](const Eigen::Vector3d& v, const char* what) {
+      head += "[";
+      for (int c = 0; c < 3; ++c) {
+        if (c) head += ", ";
+        append(head, v[c], what);
+      }
+      head += "]";
+    };
+    head += ",\n  \"rotation\": {\"center\": ";
+    triple(sketch.rotation->center, "rotation center");
+    head += ", \"axis\": ";
+    triple(sketch.rotation->axis, "rotation axis");
+    head += ", \"count\": " + std::to_string(sketch.rotation->count) + "}";
   }
   head += ",\n  \"params\": " + params_json(sketch.params) + ",\n  \"strokes\": [";
   write_atomically(file, [&](std::ostream& out) {
