@@ -21,10 +21,11 @@ namespace sketchsurf::session {
 void straighten(Stroke& stroke);
 
 /// `iterations` rounds of Kuhn's iterative smoothing (2009, §4.3): every point but the ends moves
-/// to the Catmull-Rom midpoint (tension 1/2) of p[i-2], p[i-1], p[i+1], p[i+2], i.e.
-/// (-p[i-2] + 9 p[i-1] + 9 p[i+1] - p[i+2]) / 16, all from the previous round; beyond an end the
-/// missing point is the end's point reflection (2 p0 - p1). Noise fades in the first rounds,
-/// spacing evens out; evenly spaced points on a line do not move. Attributes are kept.
+/// half way towards the Catmull-Rom midpoint (tension 1/2) of p[i-2], p[i-1], p[i+1], p[i+2],
+/// i.e. (-p[i-2] + 9 p[i-1] + 9 p[i+1] - p[i+2]) / 16, all from the previous round (half way: a
+/// full step would amplify a zig-zag); beyond an end the missing point is the end's point
+/// reflection (2 p0 - p1). Noise fades in the first rounds, spacing evens out; evenly spaced
+/// points on a line do not move. Attributes are kept.
 void smooth_stroke(Stroke& stroke, int iterations);
 
 /// Where an end of a stroke was snapped to.
