@@ -173,6 +173,13 @@ Renderer::Renderer(const vk::Context& context, VkRenderPass render_pass,
                             {4, 0, VK_FORMAT_R8G8B8A8_UNORM, offsetof(RibbonVertex, color)}}};
   ribbon_desc.depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
   ribbon_ = make_pipeline(context, render_pass, samples, layout, ribbon_desc);
+  // Translucent strokes (the drawing plane's grid): blended by their colours' alpha, hiding
+  // nothing drawn after them.
+  ribbon_desc.depth_write = false;
+  ribbon_desc.blend = Blend::Alpha;
+  ribbon_translucent_ = make_pipeline(context, render_pass, samples, layout, ribbon_desc);
+  ribbon_desc.depth_write = true;
+  ribbon_desc.blend = Blend::Opaque;
   // Hidden strokes: only where something (the surface) is in front, never writing depth.
   ribbon_desc.depth_compare = VK_COMPARE_OP_GREATER;
   ribbon_desc.depth_write = false;
@@ -228,7 +235,8 @@ void Renderer::record(VkCommandBuffer cmd, const GpuScene& scene, const Camera& 
     vkCmdDrawIndexed(cmd, scene.stroke_indices_, 1, 0, 0, 0);
   }
   if (strokes) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ribbon_.get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      options.translucent_strokes ? ribbon_translucent_.get() : ribbon_.get());
     push(1.0f, kStrokeLift);
     vkCmdDrawIndexed(cmd, scene.stroke_indices_, 1, 0, 0, 0);
   }

@@ -18,6 +18,7 @@ struct DrawOptions {
   bool hidden_strokes = true;   ///< draw strokes hidden by the surface faintly (depth-aware overlay)
   float hidden_alpha = 0.2f;    ///< opacity of hidden strokes, in [0, 1]
   bool mesh = true;             ///< draw the mesh and its outlines
+  bool translucent_strokes = false; ///< strokes blended by their colours' alpha, writing no depth
   bool occluders_drawn = false; ///< an opaque surface was drawn earlier in this pass (another
                                 ///< scene's): draw this scene's hidden strokes faintly even when it
                                 ///< has no mesh of its own
@@ -58,7 +59,7 @@ class Renderer {
  private:
   const vk::Context* context_;
   vk::UniquePipelineLayout layout_;
-  vk::UniquePipeline mesh_, mesh_culled_, ribbon_, ribbon_hidden_;
+  vk::UniquePipeline mesh_, mesh_culled_, ribbon_, ribbon_hidden_, ribbon_translucent_;
 };
 
 }  // namespace sketchsurf::render

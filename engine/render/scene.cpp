@@ -331,7 +331,8 @@ SceneGeometry build_scene(const Sketch& sketch, const TriMesh* mesh,
     for (const auto& p : stroke.points) points.push_back(glm::dvec3(p.x(), p.y(), p.z()) - origin);
     std::uint32_t color = pack(kStrokeColor);
     if (options.stroke_colors)
-      color = pack_rgba(stroke.color[0], stroke.color[1], stroke.color[2], 1.0f);
+      color = pack_rgba(stroke.color[0], stroke.color[1], stroke.color[2],
+                        options.stroke_alpha ? stroke.color[3] : 1.0f);
     else if (stroke.ignored)
       color = pack(kIgnoredStrokeColor);
     else if (stroke.boundary)

@@ -20,6 +20,8 @@ struct SceneOptions {
   double stroke_tolerance = 0.05; ///< strokes are simplified (Douglas-Peucker) as long as no point
                                   ///< moves more than this fraction of the stroke width; 0 = keep all
   bool stroke_colors = false;    ///< strokes in their own colours (else palette.h kStrokeColor)
+  bool stroke_alpha = false;     ///< with stroke_colors, their alpha too (for DrawOptions::
+                                 ///< translucent_strokes; else opaque)
   bool regions = false;          ///< colour the mesh by vertex labels (palette.h), when it has them
   bool region_boundaries = true; ///< with `regions`: outline the curves between regions
   double sharp_angle = 45.0;     ///< edges with a dihedral angle above this (degrees) are creases:

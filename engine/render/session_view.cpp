@@ -8,8 +8,9 @@ namespace sketchsurf::render {
 
 namespace {
 
-constexpr std::array<float, 4> kGridColor{0.88f, 0.9f, 0.93f, 1.0f};
-constexpr std::array<float, 4> kGridAxisColor{0.7f, 0.74f, 0.8f, 1.0f};
+// Semi-transparent (Kuhn 2009 §3.4): strokes behind the plane show through its grid.
+constexpr std::array<float, 4> kGridColor{0.55f, 0.62f, 0.72f, 0.35f};
+constexpr std::array<float, 4> kGridAxisColor{0.3f, 0.4f, 0.55f, 0.6f};
 constexpr int kGridHalfLines = 5;      // lines each side of the centre
 constexpr double kGridSpacing = 0.1;   // of the reference size
 constexpr double kCursorLength = 0.06; // axes of the controller, of the reference size
@@ -134,6 +135,7 @@ void SessionView::update(const session::SketchSession& session, const Overlay& o
     }
     SceneOptions aid_options = scene_options;
     aid_options.stroke_colors = true;
+    aid_options.stroke_alpha = true;
     aid_options.stroke_width = 0.35 * options.stroke_width;
     aid_options.stroke_tolerance = 0.0;
     upload(overlay_, build_scene(aids, nullptr, nullptr, aid_options));
@@ -171,6 +173,7 @@ void SessionView::record(VkCommandBuffer cmd, const Renderer& renderer, const Ca
   if (overlay_.scene) {
     DrawOptions aids = strokes;
     aids.hidden_strokes = false;
+    aids.translucent_strokes = true;
     renderer.record(cmd, *overlay_.scene, camera, aspect, aids);
     keep(overlay_);
   }

@@ -8,6 +8,7 @@
 
 #include "engine/render/image.h"
 #include "engine/session/actions.h"
+#include "engine/session/drawing_plane.h"
 #include "engine/vk/check.h"
 #include "engine/vk/swapchain.h"
 #include "tools/sketchsurf-studio/run.h"
@@ -100,6 +101,33 @@ void on_scroll(GLFWwindow* window, double, double dy) {
   h.studio->mouse().scroll(dy, held_modifiers(window), h.now());
 }
 
+/// The drawing aids' keys: G plane guide, P plane through three clicks, V plane facing the view,
+/// A next axis plane, N snap, O over-sketch, L straight, K smoothing (0 / 3 rounds), R rotation.
+void toggle_aid(Studio& s, int key) {
+  const session::DrawingOptions& d = s.session().drawing();
+  switch (key) {
+    case GLFW_KEY_G: s.act(session::aid_action("plane_guide", !d.plane_guide)); break;
+    case GLFW_KEY_P: s.act(session::tool_action(session::Tool::PlacePlane)); break;
+    case GLFW_KEY_V: s.act(plane_facing_view(s)); break;
+    case GLFW_KEY_A: {
+      // z -> x -> y: XY, YZ, XZ through the origin.
+      const Eigen::Vector3d& n = d.plane.normal;
+      const int axis = std::abs(n.z()) > 0.999 ? 0 : std::abs(n.x()) > 0.999 ? 1 : 2;
+      s.act(session::plane_action(session::axis_plane(axis, Eigen::Vector3d::Zero())));
+      break;
+    }
+    case GLFW_KEY_N: s.act(session::aid_action("snap", !d.snap)); break;
+    case GLFW_KEY_O: s.act(session::aid_action("oversketch", !d.oversketch)); break;
+    case GLFW_KEY_L: s.act(session::aid_action("straight", !d.straight)); break;
+    case GLFW_KEY_K: s.act(session::aid_action("smoothing", d.smoothing > 0 ? 0 : 3)); break;
+    case GLFW_KEY_R:
+      s.act(s.session().sketch().rotation ? session::simple_action("clear_rotation")
+                                          : session::rotation_action(default_rotation(6)));
+      break;
+    default: break;
+  }
+}
+
 void on_key(GLFWwindow* window, int key, int, int action, int mods) {
   Handler& h = handler_of(window);
   if (!h.studio || action != GLFW_PRESS || (h.ui && h.ui->wants_keyboard())) return;
@@ -130,12 +158,12 @@ void on_key(GLFWwindow* window, int key, int, int action, int mods) {
                                         : session::mirror_action({Eigen::Vector3d::UnitX(), 0.0}));
       break;
     case GLFW_KEY_F: s.frame_all(w, ht); break;
+    default: toggle_aid(s, key); break;
     case GLFW_KEY_TAB: s.panel_visible = !s.panel_visible; break;
     case GLFW_KEY_1: s.mouse().view().look_from(render::View::Front); break;
     case GLFW_KEY_3: s.mouse().view().look_from(render::View::Right); break;
     case GLFW_KEY_7: s.mouse().view().look_from(render::View::Top); break;
     case GLFW_KEY_5: s.mouse().view().look_from(render::View::Iso); break;
-    default: break;
   }
 }
 

@@ -107,6 +107,11 @@ void Studio::apply_state(const input::ControllerState& state) {
 
 void Studio::input(double now) {
   now_ = now;
+  // One drawing plane: the session's. Shift+wheel moved the mouse's copy: that is a plane action.
+  const Plane& mouse_plane = mouse_.drawing_plane();
+  const Plane& plane = session_->drawing().plane;
+  if (mouse_plane.normal != plane.normal || mouse_plane.offset != plane.offset)
+    act(session::plane_action(mouse_plane));
   if (replaying()) {
     for (const auto& e : scripted_->poll_events(now)) {
       if (e.state) apply_state(*e.state);
@@ -144,17 +149,33 @@ void Studio::update() {
     surface_started_ = true;
   }
   log_progress();
+  mouse_.set_drawing_plane(session_->drawing().plane);
   render::Overlay overlay;
-  // The replayed controller until the mouse moves; the drawing plane is the mouse's.
+  // The replayed controller until the mouse moves.
   const bool scripted = scripted_ && (replaying() || mouse_.current().time_s == 0.0);
   const input::ControllerState cursor = scripted      ? scripted_->current()
                                         : controller_ ? controller_->current()
                                                       : mouse_.current();
   if (cursor.tracked) overlay.cursor = cursor.pose;
-  if (!scripted && !controller_) overlay.drawing_plane = mouse_.drawing_plane();
+  const bool mouse = !scripted && !controller_;
+  if (mouse) update_snap_radius();
+  // The grid shows the drawing plane where strokes land on it: the mouse drawing on it, or the
+  // plane guide (a controller in 3D).
+  if ((mouse && mouse_.depth_mode() == input::DepthMode::Plane) || session_->drawing().plane_guide)
+    overlay.drawing_plane = session_->drawing().plane;
   // The grid lies around the controller (in whole cells): it shows where the strokes go.
   overlay.grid_centre = cursor.tracked ? cursor.pose.position : Eigen::Vector3d::Zero();
   view_.update(*session_, overlay, view_options_);
+}
+
+void Studio::update_snap_radius() {
+  // The size of a pixel at the view's target, in the session's reference size.
+  const auto& view = mouse_.view();
+  const double pixel = 2.0 * std::tan(0.5 * view.fov_y * M_PI / 180.0) * view.distance / mouse_.height();
+  const double radius = kSnapPixels * pixel / session_->reference_size();
+  const double now = session_->drawing().snap_radius;
+  if (std::isfinite(radius) && radius > 0.0 && std::abs(radius - now) > 0.01 * now)
+    act(session::aid_action("snap_radius", radius));
 }
 
 void Studio::log_progress() {

@@ -115,12 +115,17 @@ class Studio {
   void frame_box(const BoundingBox& box, int width, int height);
   /// The panel's width, and the pixels it takes from the window's left edge (with its margins).
   static constexpr int kPanelWidth = 320, kPanelSpace = 336;
+  /// The mouse's snap radius (the session's snap and over-sketch ends), pixels at the view's
+  /// target; a controller in 3D uses a fraction of the sketch's diagonal instead.
+  static constexpr double kSnapPixels = 12.0;
 
   /// At exit: --save, --save-surface, --record; the autosave is removed when nothing is unsaved.
   void finish();
 
  private:
   void apply_state(const input::ControllerState& state);
+  /// Sets the session's snap radius to kSnapPixels at the view's target (an action: recorded).
+  void update_snap_radius();
   void log_progress();
 
   StudioOptions options_;

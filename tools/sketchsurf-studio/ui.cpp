@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "engine/session/actions.h"
+#include "engine/session/drawing_plane.h"
 #include "engine/vk/check.h"
 #include "surfacing/error.h"
 
@@ -98,6 +99,52 @@ void ImGuiLayer::discard() { ImGui::EndFrame(); }
 bool ImGuiLayer::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
 bool ImGuiLayer::wants_keyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
 
+void draw_aids(Studio& studio, PanelState& st) {
+  auto& session = studio.session();
+  const auto act = [&](const input::TrackAction& a) { studio.act(a); };
+  const session::DrawingOptions& d = session.drawing();
+  ImGui::Separator();
+  if (ImGui::Combo("Plane", &st.plane, "XY (z = 0)\0YZ (x = 0)\0XZ (y = 0)\0Facing the view (V)\0Three clicks (P)\0")) {
+    if (st.plane < 3) act(session::plane_action(session::axis_plane(st.plane == 0 ? 2 : st.plane == 1 ? 0 : 1,
+                                                                     Eigen::Vector3d::Zero())));
+    if (st.plane == 3) act(plane_facing_view(studio));
+    if (st.plane == 4) act(session::tool_action(session::Tool::PlacePlane));
+  }
+  bool guide = d.plane_guide, snap = d.snap, over = d.oversketch, straight = d.straight;
+  if (ImGui::Checkbox("Plane guide (G)", &guide)) act(session::aid_action("plane_guide", guide));
+  ImGui::SameLine();
+  if (ImGui::Checkbox("Snap ends (N)", &snap)) act(session::aid_action("snap", snap));
+  if (ImGui::Checkbox("Over-sketch (O)", &over)) act(session::aid_action("oversketch", over));
+  ImGui::SameLine();
+  if (ImGui::Checkbox("Straight (L)", &straight)) act(session::aid_action("straight", straight));
+  int smoothing = d.smoothing;
+  if (ImGui::SliderInt("Smoothing (K)", &smoothing, 0, 20)) act(session::aid_action("smoothing", smoothing));
+  const auto& rotation = session.sketch().rotation;
+  bool rotate = rotation.has_value();
+  if (ImGui::Checkbox("Rotation (R)", &rotate))
+    act(rotate ? session::rotation_action(default_rotation(st.rotation_count))
+               : session::simple_action("clear_rotation"));
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90.0f);
+  if (ImGui::InputInt("fold", &st.rotation_count)) {
+    st.rotation_count = std::clamp(st.rotation_count, 2, 36);
+    if (rotation) act(session::rotation_action(default_rotation(st.rotation_count)));
+  }
+}
+
+input::TrackAction plane_facing_view(const Studio& studio) {
+  const render::Camera camera = studio.camera();
+  return session::plane_action(session::plane_facing(camera, camera.target));
+}
+
+RotationPattern default_rotation(int count) {
+  RotationPattern r;
+  r.center = Eigen::Vector3d::Zero();
+  r.axis = Eigen::Vector3d::UnitY();
+  r.count = count;
+  return r;
+}
+
 void draw_panel(Studio& studio, PanelState& st, const Log& log) {
   auto& session = studio.session();
   auto& mouse = studio.mouse();
@@ -174,12 +221,7 @@ void draw_panel(Studio& studio, PanelState& st, const Log& log) {
     mouse.set_depth_mode(st.depth_mode == 0   ? input::DepthMode::Plane
                          : st.depth_mode == 1 ? input::DepthMode::Distance
                                               : input::DepthMode::Snap);
-  if (ImGui::Combo("Plane", &st.plane, "XY (z = 0)\0YZ (x = 0)\0XZ (y = 0)\0")) {
-    const Eigen::Vector3d n = st.plane == 0 ? Eigen::Vector3d::UnitZ()
-                              : st.plane == 1 ? Eigen::Vector3d::UnitX()
-                                              : Eigen::Vector3d::UnitY();
-    mouse.set_drawing_plane({n, 0.0});
-  }
+  draw_aids(studio, st);
 
   ImGui::Separator();
   const session::SurfaceStatus job = session.surface_status();

@@ -49,13 +49,24 @@ class ImGuiLayer {
 struct PanelState {
   std::array<char, 512> path{};  ///< the file field
   int depth_mode = 0;            ///< 0 plane, 1 distance, 2 snap
-  int plane = 0;                 ///< 0 XY (z = 0), 1 YZ (x = 0), 2 XZ (y = 0)
+  int plane = 0;                 ///< 0 XY (z = 0), 1 YZ (x = 0), 2 XZ (y = 0), 3 facing the
+                                 ///< view, 4 three clicks
+  int rotation_count = 6;        ///< the rotation's fold
   float epsilon = 0.01f;
   int restarts = 10;
   int proxy_points = 400;
   bool initialised = false;
   std::size_t frame = 0;
 };
+
+/// The drawing aids' part of the panel: the plane, the guide, snap, over-sketch, straight,
+/// smoothing, rotation.
+void draw_aids(Studio& studio, PanelState& state);
+/// The action that puts the drawing plane through the view's target, facing the view (V).
+input::TrackAction plane_facing_view(const Studio& studio);
+/// The rotational pattern of the panel and the R key: `count`-fold about the vertical (y) axis
+/// through the origin (sketches are y-up).
+RotationPattern default_rotation(int count);
 
 /// Draws the panel for this frame and applies what was clicked (through studio.act() for the
 /// actions a track records). With --verbose, logs where the main widgets are on the 3rd frame
