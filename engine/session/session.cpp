@@ -272,7 +272,9 @@ void SketchSession::commit_stroke(Stroke stroke) {
       return;
     }
   }
-  if (drawing_.snap) snap_ends(stroke, sketch_.strokes, radius);
+  if (drawing_.snap)
+    snap_ends(stroke, sketch_.strokes, radius,
+              drawing_.plane_guide ? std::optional<Plane>(drawing_.plane) : std::nullopt);
   add_stroke(std::move(stroke));
 }
 

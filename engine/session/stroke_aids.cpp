@@ -40,6 +40,9 @@ Nearest nearest_on(const Stroke& stroke, const Eigen::Vector3d& p) {
 /// lines and gentle curves alone.
 constexpr double kSmoothingStep = 0.5;
 
+/// An end within this fraction of the snap radius of the drawing plane lies on it.
+constexpr double kOnPlane = 1e-9;
+
 /// Cumulative arc length at each point.
 std::vector<double> arc_lengths(const std::vector<Eigen::Vector3d>& pts) {
   std::vector<double> cum(pts.size(), 0.0);
@@ -113,13 +116,32 @@ void smooth_stroke(Stroke& stroke, int iterations) {
   }
 }
 
-std::pair<EndSnap, EndSnap> snap_ends(Stroke& stroke, const std::vector<Stroke>& others, double radius) {
+std::pair<EndSnap, EndSnap> snap_ends(Stroke& stroke, const std::vector<Stroke>& others, double radius,
+                                      const std::optional<Plane>& plane) {
   std::pair<EndSnap, EndSnap> result;
   if (stroke.points.size() < 2 || !(radius > 0.0)) return result;
   const double falloff = std::min(3.0 * radius, 0.5 * stroke.length());
   const auto find = [&](const Eigen::Vector3d& p) {
     EndSnap snap;
     double best = radius;
+    // On the plane: where another stroke crosses it, so that the moved points stay on it.
+    if (plane && std::abs(plane->signed_distance(p)) <= kOnPlane * radius) {
+      for (std::size_t k = 0; k < others.size(); ++k) {
+        const auto& o = others[k].points;
+        for (std::size_t i = 0; i + 1 < o.size(); ++i) {
+          const double da = plane->signed_distance(o[i]), db = plane->signed_distance(o[i + 1]);
+          if ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0) || da == db) continue;
+          Eigen::Vector3d x = o[i] + (da / (da - db)) * (o[i + 1] - o[i]);
+          x -= plane->signed_distance(x) * plane->normal;
+          const double d = (x - p).norm();
+          if (d <= best) {
+            best = d;
+            snap = {true, x, k};
+          }
+        }
+      }
+      if (snap.snapped) return snap;
+    }
     // A nearby end first: strokes meeting at a corner share the point.
     for (std::size_t k = 0; k < others.size(); ++k) {
       const auto& o = others[k].points;

@@ -36,12 +36,14 @@ struct EndSnap {
 };
 
 /// Snaps the ends of `stroke` that lie within `radius` (sketch units) of a stroke of `others`:
-/// to that stroke's nearest end when one is within the radius (corners meet at a point), else to
-/// the nearest point of its polyline; an end within the radius of the stroke's own other end
-/// (on a stroke longer than 4 radii) closes the loop. The end is set to the target exactly; the
-/// displacement fades out along the stroke over 3 radii (half cosine), so no kink appears.
-/// Returns what the start and the end snapped to.
-std::pair<EndSnap, EndSnap> snap_ends(Stroke& stroke, const std::vector<Stroke>& others, double radius);
+/// an end on `plane` (the drawing plane with its guide on) to the nearest point where a stroke
+/// crosses the plane, so that the stroke stays on it; otherwise to the nearest end of a stroke
+/// (corners meet at a point), else to the nearest point of a polyline; an end within the radius
+/// of the stroke's own other end (on a stroke longer than 4 radii) closes the loop. The end is
+/// set to the target exactly; the displacement fades out along the stroke over 3 radii (half
+/// cosine), so no kink appears. Returns what the start and the end snapped to.
+std::pair<EndSnap, EndSnap> snap_ends(Stroke& stroke, const std::vector<Stroke>& others, double radius,
+                                      const std::optional<Plane>& plane = std::nullopt);
 
 /// Options of the over-sketch.
 struct OversketchOptions {

@@ -1,6 +1,6 @@
-# Runs GENERATOR CUBE OUT and fails unless OUT is byte for byte EXPECTED (a file the project
+# Runs GENERATOR [INPUT] OUT and fails unless OUT is byte for byte EXPECTED (a file the project
 # generated and checked in must be what its generator writes today).
-execute_process(COMMAND "${GENERATOR}" "${CUBE}" "${OUT}" RESULT_VARIABLE status)
+execute_process(COMMAND "${GENERATOR}" ${INPUT} "${OUT}" RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "${GENERATOR} failed (${status})")
 endif()

@@ -144,6 +144,22 @@ TEST(DrawingAids, AnEndWithinTheSnapRadiusMeetsTheOtherStrokeExactly) {
   ASSERT_TRUE(s.undo());
   EXPECT_EQ(s.sketch().strokes.size(), 2u);
 
+  // With the plane guide on, an end on the plane snaps to where a stroke crosses the plane: the
+  // whole stroke stays on it (a slanted stroke's nearest point would be off the plane).
+  SketchSession g(no_autosave());
+  TrackBuilder gb;
+  gb.action(aid_action("snap", 1));
+  gb.action(plane_action({Eigen::Vector3d::UnitZ(), 0.0}));
+  gb.stroke(polyline([](double u) { return Eigen::Vector3d(0.5 + 0.3 * (u - 0.5), 0.0, u - 0.5); }, 30));
+  gb.action(aid_action("plane_guide", 1));
+  gb.stroke(polyline([](double u) { return Eigen::Vector3d(0.515 - 0.5 * u, 0.01, 0.02 * u * (1 - u)); }, 30));
+  replay(g, gb.track);
+  const auto& gs = g.sketch().strokes;
+  ASSERT_EQ(gs.size(), 2u);
+  for (const auto& p : gs[1].points) EXPECT_LT(std::abs(p.z()), 1e-9);
+  EXPECT_LT(distance_to_stroke(gs[1].points.front(), gs[0]), 1e-12);
+  EXPECT_NEAR(gs[1].points.front().x(), 0.5, 1e-12);
+
   // A stroke whose end comes back within the radius of its start closes exactly.
   Stroke loop;
   loop.points = polyline([](double u) { return Eigen::Vector3d(std::cos(6.1 * u), std::sin(6.1 * u), 0); }, 60);
