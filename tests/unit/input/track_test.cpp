@@ -126,6 +126,30 @@ TEST(Track, UnknownButtonActionToolOrFieldIsNamed) {
   EXPECT_NE(trig.find("events[0].trigger"), std::string::npos) << trig;
 }
 
+TEST(Track, DrawingAidActionsRoundTripAndBadOnesAreNamed) {
+  Track track;
+  track.events.push_back({0.1, std::nullopt, TrackAction{"aid", "snap", {1.0}}});
+  track.events.push_back({0.2, std::nullopt, TrackAction{"plane", "", {0.0, 1.0, 0.0, -0.7}}});
+  track.events.push_back({0.3, std::nullopt, TrackAction{"rotation", "", {0.5, 0.0, -1.0 / 3.0, 0.0, 1.0, 0.0, 6.0}}});
+  track.events.push_back({0.4, std::nullopt, TrackAction{"clear_rotation", "", {}}});
+  track.events.push_back({0.5, std::nullopt, TrackAction{"tool", "plane", {}}});
+  const Track back = parse_track(track_json(track), "t.json");
+  ASSERT_EQ(back.events.size(), track.events.size());
+  for (std::size_t i = 0; i < track.events.size(); ++i) {
+    EXPECT_EQ(back.events[i].action->name, track.events[i].action->name);
+    EXPECT_EQ(back.events[i].action->text, track.events[i].action->text);
+    EXPECT_EQ(back.events[i].action->values, track.events[i].action->values);
+  }
+  const std::string count = error_of(std::string(kHeader) +
+      "{\"t\": 0, \"action\": \"rotation\", \"center\": [0, 0, 0], \"axis\": [0, 1, 0], \"count\": 2.5}]}");
+  EXPECT_NE(count.find("events[0].count: expected an integer from 2 to 360"), std::string::npos) << count;
+  const std::string axis = error_of(std::string(kHeader) +
+      "{\"t\": 0, \"action\": \"rotation\", \"center\": [0, 0, 0], \"axis\": [0, 0, 0], \"count\": 6}]}");
+  EXPECT_NE(axis.find("events[0].axis: the axis is zero"), std::string::npos) << axis;
+  const std::string plane = error_of(std::string(kHeader) + "{\"t\": 1, \"action\": \"plane\", \"plane\": [0, 0, 0, 1]}]}");
+  EXPECT_NE(plane.find("normal"), std::string::npos) << plane;
+}
+
 TEST(Track, StructuralErrors) {
   EXPECT_NE(error_of("[]").find("not a track"), std::string::npos);
   EXPECT_NE(error_of("{\"format\": \"sketchsurf-track\", \"version\": 9, \"events\": []}").find("version"),

@@ -104,6 +104,32 @@ TEST(Json, MirrorNormalIsNormalisedWithItsOffset) {
                ErrorKind::Input, {"mirror.normal", "expected 3 numbers"});
 }
 
+TEST(Json, RotationPatternRoundTripsAndBadOnesAreNamed) {
+  const Sketch s = read_text(document("", R"( "rotation": {"center": [1, 2, 3], "axis": [0, 0, 2], "count": 6},)"));
+  ASSERT_TRUE(s.rotation);
+  EXPECT_EQ(s.rotation->center, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(s.rotation->axis, Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(s.rotation->count, 6);
+  EXPECT_FALSE(read_text(document("", R"( "rotation": null,)")).rotation);
+  TempDir dir;
+  Sketch w = s;
+  w.rotation->axis = Eigen::Vector3d(0.6, 0.0, 0.8);
+  write_json(w, dir / "r.json");
+  const Sketch back = read_json(dir / "r.json");
+  ASSERT_TRUE(back.rotation);
+  EXPECT_EQ(back.rotation->axis, w.rotation->axis);
+  EXPECT_EQ(back.rotation->center, w.rotation->center);
+  EXPECT_EQ(back.rotation->count, 6);
+  expect_error([] { read_text(document("", R"( "rotation": {"center": [0, 0, 0], "axis": [0, 0, 0], "count": 6},)")); },
+               ErrorKind::Input, {"t.json", "rotation", "axis is zero"});
+  expect_error([] { read_text(document("", R"( "rotation": {"center": [0, 0, 0], "axis": [0, 1, 0], "count": 1},)")); },
+               ErrorKind::Input, {"rotation.count", "from 2 to 360"});
+  expect_error([] { read_text(document("", R"( "rotation": {"center": [0, 0], "axis": [0, 1, 0], "count": 3},)")); },
+               ErrorKind::Input, {"rotation.center", "expected 3 numbers"});
+  expect_error([] { read_text(document("", R"( "rotation": {"axis": [0, 1, 0], "count": 3},)")); },
+               ErrorKind::Input, {"rotation", "no \"center\""});
+}
+
 TEST(Json, ErrorsNameTheFileThePathAndWhatWasExpected) {
   const std::string ok = R"({"points": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]})";
   struct Case {
