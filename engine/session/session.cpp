@@ -335,8 +335,11 @@ void SketchSession::play(const Edit& edit, bool forwards) {
     if (from && to) strokes[c->index] = *to;
     if (!from && to) strokes.insert(strokes.begin() + std::ptrdiff_t(c->index), *to);
   }
-  if (edit.mirror_changed) sketch_.mirror = forwards ? edit.mirror_after : edit.mirror_before;
-  if (edit.rotation_changed) sketch_.rotation = forwards ? edit.rotation_after : edit.rotation_before;
+  if (edit.patterns_changed) {
+    const Patterns& to = forwards ? edit.patterns_after : edit.patterns_before;
+    sketch_.mirror = to.mirror;
+    sketch_.rotation = to.rotation;
+  }
   changed();
 }
 
@@ -432,34 +435,32 @@ bool SketchSession::set_mirror(const std::optional<Plane>& plane) {
       throw Error::usage("the mirror plane needs a finite, non-zero normal");
     normalised = Plane{plane->normal / n, plane->offset / n};
   }
-  const auto same = [](const std::optional<Plane>& a, const std::optional<Plane>& b) {
-    if (a.has_value() != b.has_value()) return false;
-    return !a || (a->normal == b->normal && a->offset == b->offset);
-  };
-  if (same(sketch_.mirror, normalised)) return false;
-  if (live_active_) finish_stroke();
-  Edit edit;
-  edit.name = normalised ? "mirror" : "clear mirror";
-  edit.mirror_changed = true;
-  edit.mirror_before = sketch_.mirror;
-  edit.mirror_after = normalised;
-  commit(std::move(edit));
-  return true;
+  Patterns after{normalised, sketch_.rotation};
+  return change_patterns(normalised ? "mirror" : "clear mirror", after);
 }
 
 bool SketchSession::set_rotation(const std::optional<RotationPattern>& pattern) {
   std::optional<RotationPattern> checked;
   if (pattern) checked = checked_rotation(*pattern);
-  const auto& now = sketch_.rotation;
-  if (now.has_value() == checked.has_value() &&
-      (!now || (now->center == checked->center && now->axis == checked->axis && now->count == checked->count)))
-    return false;
+  Patterns after{sketch_.mirror, checked};
+  return change_patterns(checked ? "rotation" : "clear rotation", after);
+}
+
+bool SketchSession::change_patterns(const char* name, const Patterns& after) {
+  const auto same_mirror = [](const std::optional<Plane>& x, const std::optional<Plane>& y) {
+    return x.has_value() == y.has_value() && (!x || (x->normal == y->normal && x->offset == y->offset));
+  };
+  const auto same_rotation = [](const std::optional<RotationPattern>& x, const std::optional<RotationPattern>& y) {
+    return x.has_value() == y.has_value() &&
+           (!x || (x->center == y->center && x->axis == y->axis && x->count == y->count));
+  };
+  if (same_mirror(sketch_.mirror, after.mirror) && same_rotation(sketch_.rotation, after.rotation)) return false;
   if (live_active_) finish_stroke();
   Edit edit;
-  edit.name = checked ? "rotation" : "clear rotation";
-  edit.rotation_changed = true;
-  edit.rotation_before = sketch_.rotation;
-  edit.rotation_after = checked;
+  edit.name = name;
+  edit.patterns_changed = true;
+  edit.patterns_before = {sketch_.mirror, sketch_.rotation};
+  edit.patterns_after = after;
   commit(std::move(edit));
   return true;
 }

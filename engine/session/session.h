@@ -222,13 +222,15 @@ class SketchSession {
     std::optional<Stroke> before;   // empty: inserted
     std::optional<Stroke> after;    // empty: removed
   };
+  struct Patterns {
+    std::optional<Plane> mirror;
+    std::optional<RotationPattern> rotation;
+  };
   struct Edit {
     std::string name;
     std::vector<StrokeChange> changes;
-    bool mirror_changed = false;
-    std::optional<Plane> mirror_before, mirror_after;
-    bool rotation_changed = false;
-    std::optional<RotationPattern> rotation_before, rotation_after;
+    bool patterns_changed = false;
+    Patterns patterns_before, patterns_after;
   };
   struct Job;
 
@@ -236,6 +238,8 @@ class SketchSession {
   void play(const Edit& edit, bool forwards);
   /// Plays `edit` forwards and pushes it onto the undo stack (clearing redo).
   void commit(Edit edit);
+  /// Sets the sketch's patterns as one undoable edit named `name`; false when unchanged.
+  bool change_patterns(const char* name, const Patterns& after);
   std::optional<std::size_t> index_of(std::int64_t id) const;
   bool set_flag(std::int64_t id, bool Stroke::*flag, bool value, const char* name);
   std::int64_t next_id() const;
