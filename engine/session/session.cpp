@@ -274,7 +274,7 @@ void SketchSession::commit_stroke(Stroke stroke) {
   }
   if (drawing_.snap)
     snap_ends(stroke, sketch_.strokes, radius,
-              drawing_.plane_guide ? std::optional<Plane>(drawing_.plane) : std::nullopt);
+              drawing_.plane_guide ? std::optional<Plane>(drawing_.plane) : std::nullopt, sketch_.mirror);
   add_stroke(std::move(stroke));
 }
 

@@ -117,7 +117,7 @@ void smooth_stroke(Stroke& stroke, int iterations) {
 }
 
 std::pair<EndSnap, EndSnap> snap_ends(Stroke& stroke, const std::vector<Stroke>& others, double radius,
-                                      const std::optional<Plane>& plane) {
+                                      const std::optional<Plane>& plane, const std::optional<Plane>& mirror) {
   std::pair<EndSnap, EndSnap> result;
   if (stroke.points.size() < 2 || !(radius > 0.0)) return result;
   const double falloff = std::min(3.0 * radius, 0.5 * stroke.length());
@@ -162,6 +162,8 @@ std::pair<EndSnap, EndSnap> snap_ends(Stroke& stroke, const std::vector<Stroke>&
         snap = {true, q.point, k};
       }
     }
+    if (!snap.snapped && mirror && std::abs(mirror->signed_distance(p)) <= radius)
+      snap = {true, Eigen::Vector3d(p - mirror->signed_distance(p) * mirror->normal), std::nullopt};
     return snap;
   };
   result.first = find(stroke.points.front());

@@ -32,18 +32,21 @@ void smooth_stroke(Stroke& stroke, int iterations);
 struct EndSnap {
   bool snapped = false;
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
-  std::optional<std::size_t> stroke;  ///< index into `others`; none: the stroke's own other end
+  std::optional<std::size_t> stroke;  ///< index into `others`; none: the stroke's own other
+                                      ///< end or the mirror plane
 };
 
 /// Snaps the ends of `stroke` that lie within `radius` (sketch units) of a stroke of `others`:
 /// an end on `plane` (the drawing plane with its guide on) to the nearest point where a stroke
 /// crosses the plane, so that the stroke stays on it; otherwise to the nearest end of a stroke
-/// (corners meet at a point), else to the nearest point of a polyline; an end within the radius
-/// of the stroke's own other end (on a stroke longer than 4 radii) closes the loop. The end is
-/// set to the target exactly; the displacement fades out along the stroke over 3 radii (half
-/// cosine), so no kink appears. Returns what the start and the end snapped to.
+/// (corners meet at a point), else to the nearest point of a polyline; else, within the radius
+/// of the `mirror` plane, onto it (the stroke then meets its mirror image); an end within the
+/// radius of the stroke's own other end (on a stroke longer than 4 radii) closes the loop. The
+/// end is set to the target exactly; the displacement fades out along the stroke over 3 radii
+/// (half cosine), so no kink appears. Returns what the start and the end snapped to.
 std::pair<EndSnap, EndSnap> snap_ends(Stroke& stroke, const std::vector<Stroke>& others, double radius,
-                                      const std::optional<Plane>& plane = std::nullopt);
+                                      const std::optional<Plane>& plane = std::nullopt,
+                                      const std::optional<Plane>& mirror = std::nullopt);
 
 /// Options of the over-sketch.
 struct OversketchOptions {

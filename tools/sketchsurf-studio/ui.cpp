@@ -104,6 +104,11 @@ void draw_aids(Studio& studio, PanelState& st) {
   const auto act = [&](const input::TrackAction& a) { studio.act(a); };
   const session::DrawingOptions& d = session.drawing();
   ImGui::Separator();
+  // The combo shows the plane however it was set (keys, a track): an axis plane by its normal.
+  const Eigen::Vector3d& n = d.plane.normal;
+  const int shown = n == Eigen::Vector3d::UnitZ() ? 0 : n == Eigen::Vector3d::UnitX() ? 1 : n == Eigen::Vector3d::UnitY() ? 2 : -1;
+  if (shown >= 0) st.plane = shown;
+  if (shown < 0 && st.plane < 3) st.plane = 3;
   if (ImGui::Combo("Plane", &st.plane, "XY (z = 0)\0YZ (x = 0)\0XZ (y = 0)\0Facing the view (V)\0Three clicks (P)\0")) {
     if (st.plane < 3) act(session::plane_action(session::axis_plane(st.plane == 0 ? 2 : st.plane == 1 ? 0 : 1,
                                                                      Eigen::Vector3d::Zero())));

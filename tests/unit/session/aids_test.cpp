@@ -160,6 +160,18 @@ TEST(DrawingAids, AnEndWithinTheSnapRadiusMeetsTheOtherStrokeExactly) {
   EXPECT_LT(distance_to_stroke(gs[1].points.front(), gs[0]), 1e-12);
   EXPECT_NEAR(gs[1].points.front().x(), 0.5, 1e-12);
 
+  // With the mirror on, an end near the mirror plane (and no stroke) goes onto it: the stroke
+  // meets its mirror image exactly.
+  SketchSession m(no_autosave());
+  TrackBuilder mb;
+  mb.action(aid_action("snap", 1));
+  mb.action(mirror_action({Eigen::Vector3d::UnitX(), 0.0}));
+  mb.stroke(polyline([](double u) { return Eigen::Vector3d(0.4 - 0.388 * u, 0.3 * u, 0.1); }, 30));
+  replay(m, mb.track);
+  ASSERT_EQ(m.sketch().strokes.size(), 2u);
+  EXPECT_EQ(m.sketch().strokes[0].points.back().x(), 0.0);
+  EXPECT_EQ(m.sketch().strokes[0].points.back(), m.sketch().strokes[1].points.back());
+
   // A stroke whose end comes back within the radius of its start closes exactly.
   Stroke loop;
   loop.points = polyline([](double u) { return Eigen::Vector3d(std::cos(6.1 * u), std::sin(6.1 * u), 0); }, 60);
