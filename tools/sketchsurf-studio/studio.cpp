@@ -110,7 +110,9 @@ void Studio::input(double now) {
   // One drawing plane: the session's. Shift+wheel moved the mouse's copy: that is a plane action.
   const Plane& mouse_plane = mouse_.drawing_plane();
   const Plane& plane = session_->drawing().plane;
-  if (mouse_plane.normal != plane.normal || mouse_plane.offset != plane.offset)
+  // (Beyond the last bits: the mouse renormalises the normal it is given.)
+  if ((mouse_plane.normal - plane.normal).norm() > 1e-12 ||
+      std::abs(mouse_plane.offset - plane.offset) > 1e-12 * (1.0 + std::abs(plane.offset)))
     act(session::plane_action(mouse_plane));
   if (replaying()) {
     for (const auto& e : scripted_->poll_events(now)) {
