@@ -233,10 +233,14 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
 
   // Final mesh (§4.3, App. D).
   t = Clock::now();
+  // A user's proxy is rough by design (a low-poly model): its vertices may rightly move far onto
+  // the regions' surfaces, so the trust region is for the automatic proxy only.
+  ExtractOptions extract_options = params_.extract;
+  if (user_proxy) extract_options.energy.trust_distance = 0.0;
   ExtractedSurface surface = [&] {
     try {
       return extract(result.proxy, result.segmentation.labels, result.segmentation.models, work,
-                     params_.extract, progress);
+                     extract_options, progress);
     } catch (const Error& e) {
       // Rims found in the strokes (not marked by the user) that the proxy cannot be opened at:
       // the surface stays closed, as it would be without them, and the report says why.
@@ -248,7 +252,7 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
             if (stroke.id == o.id) stroke.boundary = false;
       report.openings.clear();
       return extract(result.proxy, result.segmentation.labels, result.segmentation.models, work,
-                     params_.extract, progress);
+                     extract_options, progress);
     }
   }();
   result.mesh = std::move(surface.mesh);

@@ -43,7 +43,8 @@ struct MeshEnergyOptions {
                                      ///< has no surface of its regions near it (a far branch of the
                                      ///< zero set, a model extrapolated past its strokes): it stays
                                      ///< with the proxy, held at its start by E_attract instead of
-                                     ///< projected; 0 = no limit (ours)
+                                     ///< projected; 0 = no limit (ours; the Surfacer sets 0 with a
+                                     ///< user's proxy, rough by design)
   int local_global_iterations = 5;   ///< local-global iterations after the projection, 0 = none
                                      ///< (ours; each costs ~10 L-BFGS iterations)
   double local_global_tolerance = 1e-3;  ///< they stop early when no vertex moves more, fraction
