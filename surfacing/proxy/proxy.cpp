@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <algorithm>
 #include <numeric>
 #include <sstream>
@@ -253,6 +254,21 @@ void drop_specks(TriMesh& mesh, double min_fraction) {
   mesh = mesh_from_matrices(W, G);
 }
 
+// Area fraction of `mesh` whose faces' centroids lie farther than `distance` from every point of
+// `strokes` (a grid over the stroke points).
+double far_fraction(const TriMesh& mesh, const PointGrid& strokes, double distance) {
+  double far = 0.0, total = 0.0;
+  for (const auto f : mesh.faces()) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const auto v : f.vertices()) centroid += to_eigen(mesh.point(v));
+    centroid /= 3.0;
+    const double area = mesh.calc_face_area(f);
+    total += area;
+    if (strokes.nearest(centroid, distance).second > distance * distance) far += area;
+  }
+  return total > 0.0 ? far / total : 0.0;
+}
+
 // Least-Squares Mesh attraction of `mesh` (unit frame, remeshed at 2^attract_levels times the
 // target edge) to `targets`, then Loop subdivision back to the target edge (each level halves
 // the edges; smooth, no overshoot at creases).
@@ -320,6 +336,9 @@ bool ProxyOptions::valid(std::string* why) const {
     return fail("proxy sample_spacing must be in (0, 0.1)");
   if (remesh_iterations < 0 || vipss_remesh_iterations < 0)
     return fail("proxy remesh_iterations and vipss_remesh_iterations must be >= 0");
+  if (!(far_distance > 0.0 && far_distance < 1.0)) return fail("proxy far_distance must be in (0, 1)");
+  if (!(far_tie >= 0.0 && far_tie < 1.0)) return fail("proxy far_tie must be in [0, 1)");
+  if (far_extra_genus < 0) return fail("proxy far_extra_genus must be >= 0");
   if (!(min_component >= 0.0 && min_component < 1.0))
     return fail("proxy min_component must be in [0, 1)");
   if (projection_steps < 0) return fail("proxy projection_steps must be >= 0");
@@ -397,49 +416,85 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   vipss_options.box_padding = options.confine_margin;
   vipss_options.function_tolerance = options.vipss_tolerance;
   vipss_options.threads = options.threads;
-  VipssResult vipss;
-  for (const double lambda : lambda_ladder(options)) {
-    vipss_options.lambda = lambda;
-    vipss = solve_vipss(samples, vipss_options, progress);
-    r.lambda = lambda;
-    ++r.vipss_solves;
-    if (vipss.summary.closed) break;
-  }
-  r.vipss = vipss.summary;
-  r.vipss_seconds = seconds_since(t0);
-
-  t0 = Clock::now();
   const unsigned threads = options.threads;
   BoundingBox box;
   for (Eigen::Index i = 0; i < samples.rows(); ++i) box.extend(samples.row(i).transpose());
   box.min.array() -= options.padding;
   box.max.array() += options.padding;
   const Eigen::MatrixX3d stroke_points = stroke_targets(unit, options.cell);
+  const PointGrid stroke_grid(stroke_points);
   r.confine_radius = options.confine_radius;
   BoundingBox within;
   for (Eigen::Index i = 0; i < stroke_points.rows(); ++i) within.extend(stroke_points.row(i).transpose());
   within.min.array() -= options.confine_box;
   within.max.array() += options.confine_box;
-  const ConfinedField g(vipss.function, distance_scale(vipss.function, samples, box), stroke_points,
-                        r.confine_radius, within, 2.0 * options.cell);
-  constexpr std::size_t kChunk = 64;
-  const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
-    values.resize(p.rows());
-    const auto rows = static_cast<std::size_t>(p.rows());
-    parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t c) {
-      for (std::size_t i = c * kChunk; i < std::min(rows, (c + 1) * kChunk); ++i)
-        values[static_cast<Eigen::Index>(i)] = g.value(p.row(static_cast<Eigen::Index>(i)).transpose());
-    });
-  };
   PolygonizeOptions poly;
   poly.cell_size = options.cell;
-  PolygonizeSummary poly_summary;
-  TriMesh mesh = polygonize(field, samples, box, poly, progress, &poly_summary);
-  r.evaluations = poly_summary.evaluations;
+  constexpr std::size_t kChunk = 64;
+  // One solve of the ladder: VIPSS, its confined field and that field's zero set.
+  struct Candidate {
+    std::unique_ptr<VipssResult> vipss;  // on the heap: `field` refers to its function
+    std::unique_ptr<ConfinedField> field;
+    TriMesh mesh;
+    double lambda = 0.0, far = 0.0;
+    long genus = 0;
+    std::size_t evaluations = 0;
+  };
+  const auto solve = [&](double lambda) {
+    auto t = Clock::now();
+    Candidate c;
+    vipss_options.lambda = lambda;
+    c.vipss = std::make_unique<VipssResult>(solve_vipss(samples, vipss_options, progress));
+    c.lambda = lambda;
+    ++r.vipss_solves;
+    r.vipss_seconds += seconds_since(t);
+    t = Clock::now();
+    c.field = std::make_unique<ConfinedField>(c.vipss->function,
+                                              distance_scale(c.vipss->function, samples, box),
+                                              stroke_points, r.confine_radius, within, 2.0 * options.cell);
+    const ConfinedField& g = *c.field;
+    const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
+      values.resize(p.rows());
+      const auto rows = static_cast<std::size_t>(p.rows());
+      parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t k) {
+        for (std::size_t i = k * kChunk; i < std::min(rows, (k + 1) * kChunk); ++i)
+          values[static_cast<Eigen::Index>(i)] = g.value(p.row(static_cast<Eigen::Index>(i)).transpose());
+      });
+    };
+    PolygonizeSummary poly_summary;
+    c.mesh = polygonize(field, samples, box, poly, progress, &poly_summary);
+    c.evaluations = poly_summary.evaluations;
+    if (c.mesh.n_faces() > 0) {
+      drop_specks(c.mesh, options.min_component);
+      c.far = far_fraction(c.mesh, stroke_grid, options.far_distance);
+      c.genus = mesh_topology(c.mesh).genus;
+    }
+    r.polygonize_seconds += seconds_since(t);
+    return c;
+  };
+  // The first weight whose zero set closes within the strokes' extent; when none does, the
+  // largest weight tried unless a smaller one has clearly less surface far from every stroke and
+  // not many more handles. More smoothing pulls in a zero set that runs out as a sheet and closes
+  // the windows that a less smooth one opens through thin double walls (a mug's, a shell's), but
+  // where the strokes depict thin parts (a chair's legs, seat and back, a lamp's arm) it melts
+  // them into a block whose faces lie far from every stroke.
+  Candidate kept;
+  for (const double lambda : lambda_ladder(options)) {
+    Candidate c = solve(lambda);
+    const bool closed = c.vipss->summary.closed;
+    const bool kept_better = kept.far + options.far_tie <= c.far &&
+                             kept.genus <= c.genus + options.far_extra_genus;
+    if (kept.mesh.n_faces() == 0 || (c.mesh.n_faces() > 0 && !kept_better))
+      kept = std::move(c);
+    if (closed) break;
+  }
+  r.lambda = kept.lambda;
+  r.vipss = kept.vipss->summary;
+  r.evaluations = kept.evaluations;
+  TriMesh mesh = std::move(kept.mesh);
   if (mesh.n_faces() == 0)
     throw Error::processing("VIPSS found no closed surface through the strokes");
-  drop_specks(mesh, options.min_component);
-  r.polygonize_seconds = seconds_since(t0);
+  const ConfinedField& g = *kept.field;
 
   t0 = Clock::now();
   const int steps = options.projection_steps;

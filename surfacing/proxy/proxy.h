@@ -21,11 +21,16 @@ struct ProxyOptions {
   double lambda = -1.0;        ///< VIPSS smoothing weight (VIPSS Eq. 9) on the unit-diagonal
                                ///< sketch; 0 = interpolate; < 0 = chosen per sketch: the first of
                                ///< lambda_min * lambda_step^k (up to lambda_max) whose zero set is
-                               ///< confined (see confine_margin)
+                               ///< confined (see confine_margin), else see far_distance
   double lambda_min = 1e-4;    ///< first smoothing weight tried when lambda < 0
-  double lambda_max = 1e-3;    ///< last smoothing weight tried when lambda < 0 (kept if none is
-                               ///< confined: the smoothest surface runs least far)
+  double lambda_max = 1e-3;    ///< last smoothing weight tried when lambda < 0
   double lambda_step = 10.0;   ///< factor between the smoothing weights tried
+  double far_distance = 0.05;  ///< when no weight of the ladder is confined, the largest is kept
+                               ///< unless a smaller one's polygonised surface has less area
+                               ///< farther than this from every stroke (fraction of diagonal) ...
+  double far_tie = 0.03;       ///< ... by more than this fraction of the surface's area ...
+  int far_extra_genus = 3;     ///< ... and at most this many more handles (more: windows through
+                               ///< thin double walls, not openings the strokes depict)
   double confine_margin = 0.1;   ///< a zero set is confined when f has one sign all over the faces
                                  ///< of the samples' box grown by this (fraction of diagonal): no
                                  ///< sheet runs out past the strokes' extent to the box

@@ -5,7 +5,9 @@
 // creases found, the shape checks and the time. One Markdown table on stdout, medians at the end;
 // docs/quality.md keeps the output of each change that matters.
 //   quality_bench [--cases box,mug,...] [--styles net,vr] [--restarts N] [--seed N] [--write DIR]
-//                 [--param NAME=VALUE]...
+//                 [--param NAME=VALUE]... [--proxy-only]
+// --proxy-only builds only the automatic proxy (make_proxy, as `sketchsurf proxy` does) and
+// reports its accuracy, completeness, genus, components and area outside the strokes' box.
 // --write DIR keeps, per case and style, the truth, the sketch, the proxy and the final surface
 // (CASE-STYLE.truth.ply, .json, .proxy.ply, .ply) to look at or re-run with the CLI.
 // Deviations are fractions of the truth's bounding-box diagonal, in percent.
@@ -23,6 +25,7 @@
 #include "surfacing/error.h"
 #include "surfacing/pipeline.h"
 #include "surfacing/proxy/proxy.h"
+#include "surfacing/quality/checks.h"
 #include "surfacing/quality/eval.h"
 #include "surfacing/quality/synth.h"
 #include "surfacing/sketch/io/mesh_io.h"
@@ -64,6 +67,39 @@ struct Row {
   double proxy_median, proxy_p95, median, p95, p99, max, complete_median, complete_p95, seconds;
 };
 
+// The proxy alone, one table row per case and style: what the proxy issue's targets are about
+// (accuracy and completeness against the truth, genus and components, area outside the strokes'
+// box grown by 2% of its diagonal).
+struct ProxyRow {
+  double median, p95, max, complete_median, complete_p95, outside, seconds;
+  bool topology_right;
+};
+
+ProxyRow proxy_row(const Sketch& sketch, const TriMesh& truth, const Params& params,
+                   const std::filesystem::path& kept) {
+  const auto start = std::chrono::steady_clock::now();
+  ProxyReport report;
+  const TriMesh proxy = make_proxy(sketch, params.proxy, {}, &report);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!kept.empty()) write_mesh(proxy, kept.string() + ".proxy.ply");
+  const Evaluation eval = evaluate(proxy, truth);
+  CheckOptions checks;
+  const ShapeChecks shape = check_shape(proxy, {}, sketch, false, checks);
+  const MeshTopology truth_topology = mesh_topology(truth);
+  const ProxyRow row{eval.accuracy.median, eval.accuracy.p95, eval.accuracy.max,
+                     eval.completeness.median, eval.completeness.p95, shape.outside_box, seconds,
+                     truth_topology.genus == report.topology.genus &&
+                         truth_topology.components == report.topology.components};
+  std::cout << report.lambda << " | " << pct(row.median) << " | " << pct(row.p95) << " | "
+            << pct(row.max) << " | " << pct(row.complete_median) << " | " << pct(row.complete_p95)
+            << " | " << truth_topology.genus << "/" << report.topology.genus << " | "
+            << truth_topology.components << "/" << report.topology.components << " | "
+            << pct(row.outside) << "% | ";
+  std::printf("%.1f |\n", seconds);
+  std::fflush(stdout);
+  return row;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -80,6 +116,14 @@ int main(int argc, char** argv) {
   Params params;
   unsigned seed = 1;
   std::filesystem::path write_dir;
+  bool proxy_only = false;
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--proxy-only")) {
+      proxy_only = true;
+      std::copy(argv + i + 1, argv + argc, argv + i);
+      --argc;
+      break;
+    }
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--cases")) cases = split(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--styles")) styles = split(argv[i + 1]);
@@ -100,11 +144,17 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::cout << "| case | style | strokes | proxy acc. median | proxy acc. p95 | acc. median | acc. p95 "
+  if (proxy_only)
+    std::cout << "| case | style | strokes | lambda | proxy acc. median | acc. p95 | acc. max | compl. "
+                 "median | compl. p95 | genus true/proxy | components true/proxy | outside box | s |\n"
+              << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  else
+    std::cout << "| case | style | strokes | proxy acc. median | proxy acc. p95 | acc. median | acc. p95 "
                "| acc. p99 | acc. max | compl. median | compl. p95 | creases found | crease err. "
                "median (deg) | regions | genus true/proxy/final | beyond | worse than proxy | s |\n"
             << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<Row> rows;
+  std::vector<ProxyRow> proxy_rows;
   int worse_count = 0, failures = 0;
   for (const std::string& name : cases) {
     const TriMesh truth = truth_mesh(name);
@@ -125,6 +175,10 @@ int main(int argc, char** argv) {
       std::cout << "| " << name << " | " << style << " | " << sketch.strokes.size() << " | ";
       const auto start = std::chrono::steady_clock::now();
       try {
+        if (proxy_only) {
+          proxy_rows.push_back(proxy_row(sketch, truth, params, write_dir.empty() ? "" : kept));
+          continue;
+        }
         const SurfaceResult result = Surfacer(params).run(sketch);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -160,6 +214,23 @@ int main(int argc, char** argv) {
         std::cout << "failed: " << e.what() << " |||||||||||||||\n";
       }
     }
+  }
+  if (proxy_only) {
+    const auto column = [&](double ProxyRow::*field) {
+      std::vector<double> v;
+      for (const ProxyRow& r : proxy_rows) v.push_back(r.*field);
+      return median(v);
+    };
+    const auto wrong_topology = std::count_if(proxy_rows.begin(), proxy_rows.end(),
+                                              [](const ProxyRow& r) { return !r.topology_right; });
+    std::cout << "\nMedians over " << proxy_rows.size() << " proxies (" << failures
+              << " failed), percent of the diagonal: accuracy median " << pct(column(&ProxyRow::median))
+              << ", p95 " << pct(column(&ProxyRow::p95)) << ", max " << pct(column(&ProxyRow::max))
+              << "; completeness median " << pct(column(&ProxyRow::complete_median)) << ", p95 "
+              << pct(column(&ProxyRow::complete_p95)) << "; genus or components wrong in "
+              << wrong_topology << "; time median ";
+    std::printf("%.2f s\n", column(&ProxyRow::seconds));
+    return failures == 0 ? 0 : 1;
   }
   const auto column = [&](double Row::*field) {
     std::vector<double> v;
