@@ -489,6 +489,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (closed) break;
   }
   r.lambda = kept.lambda;
+  r.far_area = kept.far;
   r.vipss = kept.vipss->summary;
   r.evaluations = kept.evaluations;
   TriMesh mesh = std::move(kept.mesh);

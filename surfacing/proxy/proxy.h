@@ -101,6 +101,8 @@ struct ProxyReport {
   MeshTopology topology;
   VipssSummary vipss;             ///< automatic proxy only: the kept solve
   double lambda = 0.0;            ///< automatic proxy: the smoothing weight used
+  double far_area = 0.0;          ///< automatic proxy: area fraction of the kept solve's surface
+                                  ///< farther than far_distance from every stroke
   double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
   std::size_t vipss_solves = 0;   ///< automatic proxy: smoothing weights tried
   std::size_t evaluations = 0;    ///< implicit-function evaluations by the polygoniser

@@ -51,6 +51,7 @@ nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt)
                   {"closed_in_box", r.vipss.closed},
                   {"lambda", r.lambda},
                   {"solves", r.vipss_solves},
+                  {"far_area", r.far_area},
                   {"confine_radius", r.confine_radius},
                   {"termination", r.vipss.termination},
                   {"evaluations", r.evaluations}};

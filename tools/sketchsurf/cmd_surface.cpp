@@ -126,7 +126,9 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
       // ... extended with the proxy, the final mesh and the fit to the strokes.
       {"sketch", {{"strokes", rep.strokes}, {"points", rep.points}, {"diagonal", rep.diagonal},
                   {"cleaning", rep.cleaning.messages}}},
-      {"proxy", {{"user", rep.user_proxy}, {"vertices", r.proxy.n_vertices()}, {"faces", r.proxy.n_faces()}}},
+      {"proxy", {{"user", rep.user_proxy}, {"vertices", r.proxy.n_vertices()}, {"faces", r.proxy.n_faces()},
+                 {"genus", rep.proxy.topology.genus}, {"lambda", rep.proxy.lambda},
+                 {"far_area", rep.proxy.far_area}}},
       {"extraction", {{"solver", ex.optimization.solver},
                       {"termination", ex.optimization.termination},
                       {"solver_iterations", ex.optimization.iterations},
