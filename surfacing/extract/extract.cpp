@@ -11,7 +11,8 @@
 namespace sketchsurf {
 
 bool ExtractOptions::valid(std::string* why) const {
-  if (!seams.valid(why) || !energy.valid(why) || !trim.valid(why)) return false;
+  if (!seams.valid(why) || !energy.valid(why) || !trim.valid(why) || !smooth_fallback.valid(why))
+    return false;
   if (!(plane_tolerance > 0.0)) {
     if (why) *why = "extract.plane_tolerance must be > 0";
     return false;
@@ -164,6 +165,7 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   constraints.strokes = stroke_segments(sketch, false);
   if (open) constraints.attract = boundary_targets(seamed.mesh, sketch, on_plane, diagonal, options.trim);
   summary.attracted_vertices = constraints.attract.size();
+  const Eigen::MatrixX3d start_positions = vertex_matrix(seamed.mesh);
   summary.optimization = optimize_mesh(seamed, models, constraints, options.energy, progress);
   summary.optimize_s = seconds_since(t);
 
@@ -175,6 +177,8 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
     half_labels[v] = seamed.labels[v].front();
     half_sharp[v] = seamed.is_seam(static_cast<int>(v)) && w[v] < 1.0;
   }
+  summary.smooth_fallback = keep_smooth_proxy(seamed.mesh, start_positions, half_sharp,
+                                              *constraints.strokes, diagonal, options.smooth_fallback);
 
   // 4. Mirror (§5).
   t = Clock::now();

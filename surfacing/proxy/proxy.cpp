@@ -339,6 +339,7 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(far_distance > 0.0 && far_distance < 1.0)) return fail("proxy far_distance must be in (0, 1)");
   if (!(far_tie >= 0.0 && far_tie < 1.0)) return fail("proxy far_tie must be in [0, 1)");
   if (far_extra_genus < 0) return fail("proxy far_extra_genus must be >= 0");
+  if (!(far_most > 0.0 && far_most <= 1.0)) return fail("proxy far_most must be in (0, 1]");
   if (!(min_component >= 0.0 && min_component < 1.0))
     return fail("proxy min_component must be in [0, 1)");
   if (projection_steps < 0) return fail("proxy projection_steps must be >= 0");
@@ -473,8 +474,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     return c;
   };
   // The first weight whose zero set closes within the strokes' extent; when none does, the
-  // largest weight tried unless a smaller one has clearly less surface far from every stroke and
-  // not many more handles. More smoothing pulls in a zero set that runs out as a sheet and closes
+  // largest weight tried unless a smaller one has clearly less surface far from every stroke (and
+  // not most of it: then the strokes frame no surface either way) and not many more handles. More smoothing pulls in a zero set that runs out as a sheet and closes
   // the windows that a less smooth one opens through thin double walls (a mug's, a shell's), but
   // where the strokes depict thin parts (a chair's legs, seat and back, a lamp's arm) it melts
   // them into a block whose faces lie far from every stroke.
@@ -482,7 +483,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   for (const double lambda : lambda_ladder(options)) {
     Candidate c = solve(lambda);
     const bool closed = c.vipss->summary.closed;
-    const bool kept_better = kept.far + options.far_tie <= c.far &&
+    const bool kept_better = kept.far + options.far_tie <= c.far && kept.far <= options.far_most &&
                              kept.genus <= c.genus + options.far_extra_genus;
     if (kept.mesh.n_faces() == 0 || (c.mesh.n_faces() > 0 && !kept_better))
       kept = std::move(c);

@@ -28,7 +28,9 @@ struct ProxyOptions {
   double far_distance = 0.05;  ///< when no weight of the ladder is confined, the largest is kept
                                ///< unless a smaller one's polygonised surface has less area
                                ///< farther than this from every stroke (fraction of diagonal) ...
-  double far_tie = 0.03;       ///< ... by more than this fraction of the surface's area ...
+  double far_tie = 0.03;       ///< ... by more than this fraction of the surface's area, has
+  double far_most = 0.5;       ///< at most this fraction far (more: the strokes frame no surface,
+                               ///< a flower's petals, a painterly scene) ...
   int far_extra_genus = 3;     ///< ... and at most this many more handles (more: windows through
                                ///< thin double walls, not openings the strokes depict)
   double confine_margin = 0.1;   ///< a zero set is confined when f has one sign all over the faces

@@ -192,7 +192,10 @@ int main(int argc, char** argv) {
                       final_eval.accuracy.p95,    final_eval.accuracy.p99, final_eval.accuracy.max,
                       final_eval.completeness.median, final_eval.completeness.p95, seconds};
         rows.push_back(row);
-        const bool worse = row.median > row.proxy_median || row.p95 > row.proxy_p95;
+        // Worse by at least what the table shows (half its last digit): the same surface sampled
+        // in another face order differs by less.
+        constexpr double kShown = 5e-6;
+        const bool worse = row.median > row.proxy_median + kShown || row.p95 > row.proxy_p95 + kShown;
         worse_count += worse;
         char creases[64] = "-", error[32] = "-";
         if (final_eval.creases.sharp_edges > 0) {

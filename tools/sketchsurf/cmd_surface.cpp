@@ -138,6 +138,8 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                       {"seam_vertices", ex.seam_vertices},
                       {"corner_vertices", ex.corner_vertices},
                       {"held_vertices", ex.optimization.held_vertices},
+                      {"smooth_parts", ex.smooth_fallback.parts},
+                      {"smooth_parts_at_proxy", ex.smooth_fallback.reverted},
                       {"sharp_vertices", ex.sharp_vertices},
                       {"trimmed_faces", ex.trimmed_faces},
                       {"open", ex.open},
