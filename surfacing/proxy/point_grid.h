@@ -42,20 +42,44 @@ class PointGrid {
                                  double limit = std::numeric_limits<double>::infinity()) const {
     const std::array<int, 3> c = coords(p.transpose());
     std::pair<int, double> best{-1, std::numeric_limits<double>::infinity()};
+    // The points of cells (x0..x1, y, z) are contiguous in vertices_: a run of cells along x is
+    // scanned as one range.
+    auto scan = [&](int x0, int x1, int y, int z) {
+      x0 = std::max(x0, 0);
+      x1 = std::min(x1, dims_[0] - 1);
+      if (x0 > x1) return;
+      const std::size_t end = start_[index({x1, y, z}) + 1];
+      for (std::size_t k = start_[index({x0, y, z})]; k < end; ++k) {
+        const int v = vertices_[k];
+        const double d2 = (V_.row(v).transpose() - p).squaredNorm();
+        if (d2 < best.second || (d2 == best.second && v < best.first)) best = {v, d2};
+      }
+    };
+    // Distance from p to the slab of cells `i` along `axis` (0 for p's own cell), slightly
+    // under-estimated: points are binned with a rounded division.
+    auto gap = [&](int axis, int i) {
+      double g = 0.0;
+      if (i < c[axis]) g = p[axis] - (lo_[axis] + (i + 1) * cell_);
+      if (i > c[axis]) g = lo_[axis] + i * cell_ - p[axis];
+      return std::max(0.0, g - 1e-9 * cell_);
+    };
     const int rings = std::max({dims_[0], dims_[1], dims_[2]});
     for (int r = 0; r <= rings; ++r) {
-      for (int x = c[0] - r; x <= c[0] + r; ++x)
-        for (int y = c[1] - r; y <= c[1] + r; ++y)
-          for (int z = c[2] - r; z <= c[2] + r; ++z) {
-            if (std::max({std::abs(x - c[0]), std::abs(y - c[1]), std::abs(z - c[2])}) != r) continue;
-            if (x < 0 || y < 0 || z < 0 || x >= dims_[0] || y >= dims_[1] || z >= dims_[2]) continue;
-            const std::size_t cell = index({x, y, z});
-            for (std::size_t k = start_[cell]; k < start_[cell + 1]; ++k) {
-              const int v = vertices_[k];
-              const double d2 = (V_.row(v).transpose() - p).squaredNorm();
-              if (d2 < best.second || (d2 == best.second && v < best.first)) best = {v, d2};
-            }
+      // Ring r: the cells at Chebyshev distance r from p's cell, row by row along x; rows that
+      // cannot hold a point as near as the best one so far are skipped.
+      for (int z = std::max(c[2] - r, 0); z <= std::min(c[2] + r, dims_[2] - 1); ++z) {
+        const double gz = gap(2, z);
+        for (int y = std::max(c[1] - r, 0); y <= std::min(c[1] + r, dims_[1] - 1); ++y) {
+          const double gy = gap(1, y);
+          if (gy * gy + gz * gz > best.second) continue;
+          if (std::abs(z - c[2]) == r || std::abs(y - c[1]) == r) {
+            scan(c[0] - r, c[0] + r, y, z);
+          } else {
+            scan(c[0] - r, c[0] - r, y, z);  // r > 0 here
+            scan(c[0] + r, c[0] + r, y, z);
           }
+        }
+      }
       // Every cell of ring r + 1 is at least r cells away from p's cell.
       if (best.first >= 0 && std::sqrt(best.second) < r * cell_) break;
       if (limit < r * cell_) break;
