@@ -190,6 +190,43 @@ TEST(Vipss, GradientMatchesFiniteDifferences) {
   }
 }
 
+// The vectorised sum against the formula term by term, with a centre count that is not a whole
+// number of blocks (padding), at random points and exactly at a centre (where the gradient of
+// the r b . e term is taken as 0 instead of 0/0).
+TEST(HermiteRbf, MatchesTheFormulaTermByTerm) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  const int n = 37;
+  Eigen::MatrixX3d centers(n, 3), b(n, 3);
+  Eigen::VectorXd a(n);
+  for (int j = 0; j < n; ++j) {
+    centers.row(j) << u(rng), u(rng), u(rng);
+    b.row(j) << u(rng), u(rng), u(rng);
+    a[j] = u(rng);
+  }
+  const Eigen::Vector4d c(0.1, -0.2, 0.3, 0.05);
+  const HermiteRbf f(centers, a, b, c);
+  EXPECT_EQ(f.size(), 37u);
+  for (int q = 0; q <= 50; ++q) {
+    const Eigen::Vector3d x =
+        q < 50 ? Eigen::Vector3d(u(rng), u(rng), u(rng)) : Eigen::Vector3d(centers.row(7).transpose());
+    double value = c[0] + c.tail<3>().dot(x);
+    Eigen::Vector3d gradient = c.tail<3>();
+    for (int j = 0; j < n; ++j) {
+      const Eigen::Vector3d e = centers.row(j).transpose() - x;
+      const double r = e.norm();
+      const Eigen::Vector3d bj = b.row(j).transpose();
+      value += a[j] * r * r * r + 3.0 * r * bj.dot(e);
+      gradient += -3.0 * a[j] * r * e - 3.0 * r * bj;
+      if (r > 1e-12) gradient += -3.0 * bj.dot(e) / r * e;
+    }
+    Eigen::Vector3d got;
+    EXPECT_NEAR(f.value_gradient(x, &got), value, 1e-12) << q;
+    EXPECT_NEAR((got - gradient).norm(), 0.0, 1e-12) << q;
+    EXPECT_EQ(f.value(x), f.value_gradient(x, &got)) << q;
+  }
+}
+
 TEST(Vipss, SameResultWhateverTheThreadCount) {
   const Eigen::MatrixX3d x = blob_points(300, 5);
   VipssOptions one;
