@@ -9,7 +9,10 @@
 #include "surfacing/extract/extract.h"
 #include "surfacing/error.h"
 #include "surfacing/pipeline.h"
+#include "surfacing/quality/eval.h"
+#include "surfacing/quality/synth.h"
 #include "tests/support/shapes.h"
+#include "tests/support/truth_suite.h"
 #include "tests/unit/extract/fixtures.h"
 
 namespace sketchsurf {
@@ -121,6 +124,20 @@ TEST(Surface, AHatchingSceneIsRefusedWithAClearMessage) {
     EXPECT_NE(what.find("do not seem to depict one surface"), std::string::npos) << what;
     EXPECT_NE(what.find("proxy mesh"), std::string::npos) << what;
   }
+}
+
+// A smooth closed shape drawn as a clean curve network: no crease, so the final surface is at least
+// as accurate as the automatic proxy it started from (the proxy is kept where one quartic per
+// region would pass farther from the strokes).
+TEST(Surface, ASmoothTorusIsAtLeastAsAccurateAsItsProxy) {
+  const TriMesh truth = testing::truth_shape("torus").mesh;
+  const SurfaceResult r = surface(synthesize_sketch(truth));
+  const Evaluation final_eval = evaluate(r.mesh, truth), proxy_eval = evaluate(r.proxy, truth);
+  constexpr double kSampling = 5e-6;  // the same surface sampled in another face order
+  EXPECT_LE(final_eval.accuracy.median, proxy_eval.accuracy.median + kSampling);
+  EXPECT_LE(final_eval.accuracy.p95, proxy_eval.accuracy.p95 + kSampling);
+  EXPECT_LT(final_eval.accuracy.p95, 0.001) << "p95 beyond 0.1% of the diagonal";
+  EXPECT_EQ(mesh_topology(r.mesh).genus, 1);
 }
 
 TEST(Surface, CylinderWithCapsHasSharpRimsAndARoundSide) {
