@@ -1,5 +1,8 @@
 #include "surfacing/mesh.h"
 
+#include <algorithm>
+#include <numeric>
+
 #include "surfacing/error.h"
 
 namespace sketchsurf {
@@ -8,6 +11,22 @@ Eigen::MatrixX3d vertex_matrix(const TriMesh& mesh) {
   Eigen::MatrixX3d V(mesh.n_vertices(), 3);
   for (auto v : mesh.vertices()) V.row(v.idx()) = to_eigen(mesh.point(v)).transpose();
   return V;
+}
+
+std::vector<int> vertex_components(const Eigen::MatrixX3i& F, Eigen::Index vertices) {
+  std::vector<int> parent(static_cast<std::size_t>(vertices));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 1; k < 3; ++k) {
+      const int a = find(F(f, 0)), b = find(F(f, k));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  for (auto& p : parent) p = find(p);
+  return parent;
 }
 
 Eigen::MatrixX3i face_matrix(const TriMesh& mesh) {

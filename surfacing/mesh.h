@@ -2,6 +2,7 @@
 // The one mesh type for geometry: an OpenMesh triangle mesh in double precision.
 
 #include <Eigen/Core>
+#include <vector>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 namespace sketchsurf {
@@ -24,6 +25,9 @@ inline OpenMesh::Vec3d to_openmesh(const Eigen::Vector3d& p) { return {p.x(), p.
 Eigen::MatrixX3d vertex_matrix(const TriMesh& mesh);
 /// Triangle vertex indices as a #F x 3 matrix.
 Eigen::MatrixX3i face_matrix(const TriMesh& mesh);
+/// Per vertex (0 .. vertices - 1): the lowest vertex index of its connected component through the
+/// triangles of F, so equal values mean the same part (a vertex in no triangle is its own part).
+std::vector<int> vertex_components(const Eigen::MatrixX3i& F, Eigen::Index vertices);
 /// Builds a mesh from #V x 3 positions and #F x 3 triangles; throws Error (Processing) on a
 /// triangle that OpenMesh cannot add (non-manifold or inconsistently oriented).
 TriMesh mesh_from_matrices(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);

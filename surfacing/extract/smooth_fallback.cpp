@@ -1,6 +1,5 @@
 #include "surfacing/extract/smooth_fallback.h"
 
-#include <numeric>
 #include <string>
 
 #include "surfacing/closest_face.h"
@@ -26,17 +25,8 @@ SmoothFallbackSummary keep_smooth_proxy(TriMesh& mesh, const Eigen::MatrixX3d& s
     return summary;
 
   // Connected parts (through faces) and whether each has a crease vertex.
-  std::vector<int> part(static_cast<std::size_t>(now.rows()));
-  std::iota(part.begin(), part.end(), 0);
-  const auto find = [&](int a) {
-    while (part[a] != a) a = part[a] = part[part[a]];
-    return a;
-  };
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 1; k < 3; ++k) {
-      const int a = find(F(f, 0)), b = find(F(f, k));
-      if (a != b) part[std::max(a, b)] = std::min(a, b);
-    }
+  const std::vector<int> part = vertex_components(F, now.rows());
+  const auto find = [&](int v) { return part[static_cast<std::size_t>(v)]; };
   std::vector<char> creased(part.size(), 0);
   for (std::size_t v = 0; v < part.size(); ++v)
     if (v < sharp.size() && sharp[v]) creased[find(static_cast<int>(v))] = 1;

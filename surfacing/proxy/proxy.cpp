@@ -213,18 +213,9 @@ double distance_scale(const HermiteRbf& f, const Eigen::MatrixX3d& samples, cons
 void drop_specks(TriMesh& mesh, double min_fraction) {
   const Eigen::MatrixX3d V = vertex_matrix(mesh);
   const Eigen::MatrixX3i F = face_matrix(mesh);
-  std::vector<int> parent(static_cast<std::size_t>(V.rows()));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 1; k < 3; ++k) {
-      const int a = find(F(f, 0)), b = find(F(f, k));
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-  std::vector<double> area(parent.size(), 0.0);
+  const std::vector<int> part = vertex_components(F, V.rows());
+  const auto find = [&](int v) { return part[static_cast<std::size_t>(v)]; };
+  std::vector<double> area(part.size(), 0.0);
   double total = 0.0;
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
@@ -239,7 +230,7 @@ void drop_specks(TriMesh& mesh, double min_fraction) {
   Eigen::MatrixX3i G(static_cast<Eigen::Index>(kept.size()), 3);
   for (std::size_t i = 0; i < kept.size(); ++i) G.row(static_cast<Eigen::Index>(i)) = F.row(kept[i]);
   // Unused vertices dropped, the others renumbered in order.
-  std::vector<int> index(parent.size(), -1);
+  std::vector<int> index(part.size(), -1);
   int used = 0;
   for (Eigen::Index f = 0; f < G.rows(); ++f)
     for (int k = 0; k < 3; ++k)
