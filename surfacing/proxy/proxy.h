@@ -43,11 +43,10 @@ struct ProxyOptions {
                                  ///< (ground-truth chair: legs apart at 0.15) but pits faces framed
                                  ///< by strokes far apart (bundled cube: genus 5 at 0.15, 0 at 0.3;
                                  ///< ground-truth torus: 21 at 0.04, 1 at 0.08)
-  double confine_box = 0.015;   ///< with confine_radius > 0, no surface farther than this outside
+  double confine_box = 0.02;    ///< with confine_radius > 0, no surface farther than this outside
                                 ///< the strokes' bounding box either (fraction of diagonal): the
                                 ///< offset surface that closes a cut would reach confine_radius
-                                ///< past the outermost strokes. Below the shape checks' 2% margin,
-                                ///< so a cut at the wall is not counted as area outside the box
+                                ///< past the outermost strokes
   double min_component = 0.01;  ///< parts of the polygonised surface with less than this fraction
                                 ///< of its area are dropped (specks the confinement cuts off)
   double vipss_tolerance = 1e-7;  ///< L-BFGS relative energy change at which the normals are
