@@ -464,12 +464,13 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     r.polygonize_seconds += seconds_since(t);
     return c;
   };
-  // The first weight whose zero set closes within the strokes' extent; when none does, the
-  // largest weight tried unless a smaller one has clearly less surface far from every stroke (and
-  // not most of it: then the strokes frame no surface either way) and not many more handles. More smoothing pulls in a zero set that runs out as a sheet and closes
-  // the windows that a less smooth one opens through thin double walls (a mug's, a shell's), but
-  // where the strokes depict thin parts (a chair's legs, seat and back, a lamp's arm) it melts
-  // them into a block whose faces lie far from every stroke.
+  // The first weight whose zero set closes within the strokes' extent (else the largest tried),
+  // unless a smaller one has clearly less surface far from every stroke (but not most of it: then
+  // the strokes frame no surface either way) and not many more handles. More smoothing pulls in a
+  // zero set that runs out as a sheet and closes the windows that a less smooth one opens through
+  // thin double walls (a mug's, a shell's), but where the strokes depict thin parts (a chair's
+  // legs, seat and back, a lamp's arm) it melts them into a block whose faces lie far from every
+  // stroke.
   Candidate kept;
   for (const double lambda : lambda_ladder(options)) {
     Candidate c = solve(lambda);
