@@ -129,9 +129,9 @@ Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge) {
 // little): a cap never reaches past the strokes' extent. radius = 0: f alone.
 class ConfinedField {
  public:
-  ConfinedField(const HermiteRbf& f, double scale, const Eigen::MatrixX3d& strokes, double radius,
-                const BoundingBox& within, double band)
-      : f_(f), scale_(scale), strokes_(strokes), grid_(strokes), radius_(radius), within_(within),
+  ConfinedField(const HermiteRbf& f, double scale, const Eigen::MatrixX3d& strokes,
+                const PointGrid& grid, double radius, const BoundingBox& within, double band)
+      : f_(f), scale_(scale), strokes_(strokes), grid_(grid), radius_(radius), within_(within),
         band_(band) {}
 
   // g at p (and, with `to_surface`, the Newton step that moves p onto g = 0 to first order).
@@ -172,7 +172,7 @@ class ConfinedField {
   const HermiteRbf& f_;
   double scale_;
   const Eigen::MatrixX3d& strokes_;
-  PointGrid grid_;
+  const PointGrid& grid_;  // over strokes_
   double radius_;
   BoundingBox within_;
   double band_;
@@ -443,7 +443,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     t = Clock::now();
     c.field = std::make_unique<ConfinedField>(c.vipss->function,
                                               distance_scale(c.vipss->function, samples, box),
-                                              stroke_points, r.confine_radius, within, 2.0 * options.cell);
+                                              stroke_points, stroke_grid, r.confine_radius, within,
+                                              2.0 * options.cell);
     const ConfinedField& g = *c.field;
     const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
       values.resize(p.rows());
