@@ -56,6 +56,12 @@ std::size_t find_root(std::vector<std::size_t>& parent, std::size_t i) {
   return i;
 }
 
+// Grows `box` to contain `other`.
+void merge(BoundingBox& box, const BoundingBox& other) {
+  box.min = box.min.cwiseMin(other.min);
+  box.max = box.max.cwiseMax(other.max);
+}
+
 }  // namespace
 
 bool DecorationOptions::valid(std::string* why) const {
@@ -68,6 +74,7 @@ bool DecorationOptions::valid(std::string* why) const {
   if (!(end_share > 0.0 && end_share <= 0.5)) return fail("decorations.end_share must be in (0, 0.5]");
   if (!(min_dangling >= 0.0)) return fail("decorations.min_dangling must be >= 0");
   if (!(free_end > touch && free_end < 1.0)) return fail("decorations.free_end must be in (touch, 1)");
+  if (!(carried >= 0.0 && carried < 1.0)) return fail("decorations.carried must be in [0, 1)");
   return true;
 }
 
@@ -79,53 +86,116 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
   const double r = options.touch * diagonal;
   const StrokePointGrid grid(sketch, r);
 
-  // Which strokes touch which, and where along each stroke (arc length of touching points).
+  // Which strokes touch which, and where along each stroke: per neighbour, the first and last
+  // touching point as fractions of the stroke's length.
+  struct Touch {
+    std::size_t stroke;
+    double first, last;
+  };
   std::vector<std::size_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<std::vector<double>> touching_at(n);  // fractions of the stroke's length
+  std::vector<std::vector<Touch>> touches(n);
+  std::vector<BoundingBox> stroke_box(n);
   for (std::size_t s = 0; s < n; ++s) {
     const Stroke& stroke = sketch.strokes[s];
     const double length = stroke.length();
     double along = 0.0;
+    std::unordered_map<std::size_t, std::size_t> slot;  // neighbour -> index in touches[s]
     for (std::size_t i = 0; i < stroke.size(); ++i) {
+      stroke_box[s].extend(stroke.points[i]);
       if (i > 0) along += (stroke.points[i] - stroke.points[i - 1]).norm();
-      const std::vector<std::size_t> near = grid.strokes_near(stroke.points[i], s, r);
-      if (near.empty()) continue;
-      touching_at[s].push_back(length > 0.0 ? along / length : 0.0);
-      for (std::size_t t : near) parent[find_root(parent, s)] = find_root(parent, t);
+      const double at = length > 0.0 ? along / length : 0.0;
+      for (std::size_t t : grid.strokes_near(stroke.points[i], s, r)) {
+        const auto [it, added] = slot.emplace(t, touches[s].size());
+        if (added) touches[s].push_back({t, at, at});
+        touches[s][it->second].last = at;
+        parent[find_root(parent, s)] = find_root(parent, t);
+      }
     }
   }
 
   // Groups of touching strokes and their extent; the largest (by extent) is the object.
   std::vector<BoundingBox> group_box(n);
-  for (std::size_t s = 0; s < n; ++s)
-    for (const V3& p : sketch.strokes[s].points) group_box[find_root(parent, s)].extend(p);
+  for (std::size_t s = 0; s < n; ++s) merge(group_box[find_root(parent, s)], stroke_box[s]);
   std::size_t largest = find_root(parent, 0);
   for (std::size_t s = 0; s < n; ++s)
     if (group_box[find_root(parent, s)].diagonal() > group_box[largest].diagonal()) largest = find_root(parent, s);
 
+  // The strokes that touch stroke `s` away from its end `at_start` (start or end) and reach the
+  // other strokes only through `s`, when their extent stays below `limit`: what a stroke hanging
+  // by that end carries at its free end. False when they reach the strokes at the attached end,
+  // or grow larger.
+  const auto carried = [&](std::size_t s, bool at_start, double limit, std::vector<std::size_t>& group) {
+    const double share = options.end_share;
+    const auto attached = [&](const Touch& t) { return at_start ? t.first <= share : t.last >= 1.0 - share; };
+    const auto beyond = [&](const Touch& t) { return at_start ? t.last > share : t.first < 1.0 - share; };
+    std::vector<char> seen(n, 0);
+    seen[s] = 1;
+    for (const Touch& t : touches[s])
+      if (attached(t)) seen[t.stroke] = 2;  // the way to the object
+    group.clear();
+    for (const Touch& t : touches[s])
+      if (beyond(t) && seen[t.stroke] != 1) {
+        if (seen[t.stroke] == 2) return false;
+        seen[t.stroke] = 1;
+        group.push_back(t.stroke);
+      }
+    BoundingBox box;
+    for (std::size_t k = 0; k < group.size(); ++k) {
+      merge(box, stroke_box[group[k]]);
+      if (box.diagonal() >= limit) return false;
+      for (const Touch& t : touches[group[k]]) {
+        if (seen[t.stroke] == 2) return false;
+        if (seen[t.stroke] == 0) {
+          seen[t.stroke] = 1;
+          group.push_back(t.stroke);
+        }
+      }
+    }
+    return true;
+  };
+
+  std::vector<char> small(n, 0), dangling(n, 0);
+  const double free = options.free_end * diagonal;
+  std::vector<std::size_t> group;
   for (std::size_t s = 0; s < n; ++s) {
     const Stroke& stroke = sketch.strokes[s];
     if (stroke.ignored || stroke.boundary || stroke.size() < 2) continue;
-    const std::size_t group = find_root(parent, s);
-    if (group != largest && group_box[group].diagonal() < options.small_group * diagonal) {
-      out.push_back({s, stroke.id, DecorationKind::SmallGroup});
+    const std::size_t g = find_root(parent, s);
+    if (g != largest && group_box[g].diagonal() < options.small_group * diagonal) {
+      small[s] = 1;
       continue;
     }
     if (stroke.length() < options.min_dangling * diagonal) continue;
     // A closed stroke (a rim, an outline drawn on a face) is never an antenna.
-    if ((stroke.points.front() - stroke.points.back()).norm() < options.free_end * diagonal) continue;
-    // Touching by one end at most, and the other end(s) far from every other stroke: an imprecise
-    // junction of a sparse curve network misses its neighbour by a little, an antenna by a lot.
-    const auto& at = touching_at[s];
-    const double free = options.free_end * diagonal;
-    const auto end_free = [&](const V3& p) { return grid.strokes_near(p, s, free).empty(); };
-    const bool start_free = end_free(stroke.points.front()), end_is_free = end_free(stroke.points.back());
-    bool dangling = false;
-    if (at.empty()) dangling = start_free && end_is_free && group != largest;
-    else if (at.back() <= options.end_share) dangling = end_is_free;  // touches near its start only
-    else if (at.front() >= 1.0 - options.end_share) dangling = start_free;  // near its end only
-    if (dangling) out.push_back({s, stroke.id, DecorationKind::Dangling});
+    if ((stroke.points.front() - stroke.points.back()).norm() < free) continue;
+    if (touches[s].empty()) {
+      const auto end_free = [&](const V3& p) { return grid.strokes_near(p, s, free).empty(); };
+      dangling[s] = g != largest && end_free(stroke.points.front()) && end_free(stroke.points.back());
+      continue;
+    }
+    // Touching by one end, and the other end far from every stroke but those it carries: an
+    // imprecise junction of a sparse curve network misses its neighbour by a little, an antenna
+    // by a lot.
+    const double limit = std::min(options.carried * diagonal, 0.5 * stroke.length());
+    for (const bool at_start : {true, false}) {
+      if (!carried(s, at_start, limit, group)) continue;
+      const V3& free_end = at_start ? stroke.points.back() : stroke.points.front();
+      const std::vector<std::size_t> near = grid.strokes_near(free_end, s, free);
+      if (!std::all_of(near.begin(), near.end(), [&](std::size_t t) {
+            return std::find(group.begin(), group.end(), t) != group.end();
+          }))
+        continue;
+      dangling[s] = 1;
+      for (std::size_t t : group) small[t] = 1;
+      break;
+    }
+  }
+  for (std::size_t s = 0; s < n; ++s) {
+    const Stroke& stroke = sketch.strokes[s];
+    if (stroke.ignored || stroke.boundary) continue;
+    if (small[s]) out.push_back({s, stroke.id, DecorationKind::SmallGroup});
+    else if (dangling[s]) out.push_back({s, stroke.id, DecorationKind::Dangling});
   }
   return out;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Strokes that depict no surface: a dot or a small scribble apart from the rest, a single stroke
-// that hangs off the sketch by one end (an antenna, a cable, a stem). Left in, each becomes a blob,
-// a horn or a fin of the surface; so they are found before surfacing and marked ignored.
+// that hangs off the sketch by one end (an antenna, a cable, a stem), possibly carrying a small
+// group at its free end (a cable's plug, a ring on a string). Left in, each becomes a blob, a horn
+// or a fin of the surface; so they are found before surfacing and marked ignored.
 
 #include <cstdint>
 #include <string>
@@ -20,6 +21,10 @@ struct DecorationOptions {
                                ///< this share of the stroke's length from the same end
   double min_dangling = 0.08;  ///< a one-end stroke counts only when at least this long
   double free_end = 0.06;      ///< ... and when its free end is this far from every other stroke
+                               ///< but those of the group it carries:
+  double carried = 0.15;       ///< strokes that touch a one-end stroke away from that end and
+                               ///< reach the rest only through it (a cable's plug) go with it when
+                               ///< their extent is below this and half the stroke's length
   bool valid(std::string* why) const;
 };
 
@@ -34,9 +39,10 @@ struct Decoration {
 };
 
 /// The strokes of `sketch` that depict no surface: members of a small group of touching strokes
-/// apart from the largest group (dots, small scribbles), and strokes longer than min_dangling
-/// that touch the others by at most one end while the other end is free_end away from them
-/// (closed strokes excepted). Strokes already ignored, boundary strokes and
+/// apart from the largest group (dots, small scribbles); strokes longer than min_dangling that
+/// touch the others by at most one end while the other end is free_end away from them (closed
+/// strokes excepted); and the small group such a stroke carries, when the strokes it touches away
+/// from its attached end reach the rest only through it (they are reported as a small group). Strokes already ignored, boundary strokes and
 /// strokes of fewer than 2 points are left out of the test (boundary strokes still count as
 /// neighbours). Deterministic; `sketch` should be resampled (the test runs on its points).
 std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationOptions& options = {});

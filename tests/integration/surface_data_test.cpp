@@ -2,7 +2,8 @@
 // VNS (.obj) sketch in ../shared/data, through the whole pipeline with an automatic proxy built by
 // the test at a coarser resolution than the paper's (to keep the test short): the median distance
 // from the stroke points to the surface must stay under 1% of the bounding-box diagonal. And the
-// flower, a scene of single lines that depicts no surface, is refused with the default parameters.
+// flower, a scene of single lines that depicts no surface, is refused with the default parameters;
+// a lamp's cable and its plug are left out of the surface.
 
 #include <gtest/gtest.h>
 
@@ -55,6 +56,36 @@ TEST(NonSurfaceData, TheFlowerIsRefused) {
     EXPECT_EQ(e.kind(), ErrorKind::Processing) << e.what();
     EXPECT_NE(std::string(e.what()).find("do not seem to depict one surface"), std::string::npos) << e.what();
   }
+}
+
+TEST(DecorationData, ALampsCableAndPlugAreLeftOut) {
+  // cassie/02-0-1: a table lamp whose cable (its longest stroke) runs from the base across the
+  // floor to a plug of six small strokes. Surfaced, they made a sheet as long as the cable.
+  const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "cassie" / "02-0-1.curves");
+  std::size_t cable = 0;
+  for (std::size_t s = 0; s < sketch.strokes.size(); ++s)
+    if (sketch.strokes[s].length() > sketch.strokes[cable].length()) cable = s;
+  Params params;
+  params.proxy.edge = 0.014;
+  params.segment.restarts = 2;
+  const SurfaceResult r = Surfacer(params).run(sketch);
+  std::size_t dangling = 0, carried = 0;
+  for (const Decoration& d : r.report.decorations) {
+    if (d.stroke == cable) EXPECT_EQ(d.kind, DecorationKind::Dangling);
+    dangling += d.kind == DecorationKind::Dangling;
+    carried += d.stroke > cable && d.stroke <= cable + 6 && d.kind == DecorationKind::SmallGroup;
+  }
+  EXPECT_EQ(dangling, 1u);
+  EXPECT_EQ(carried, 6u);
+  // The surface stays with the lamp: its extent is the lamp's, not the lamp's and the cable's.
+  std::vector<char> left_out(sketch.strokes.size(), 0);
+  for (const Decoration& d : r.report.decorations) left_out[d.stroke] = 1;
+  BoundingBox lamp, surface;
+  for (std::size_t s = 0; s < sketch.strokes.size(); ++s)
+    if (!left_out[s])
+      for (const auto& p : sketch.strokes[s].points) lamp.extend(p);
+  for (const auto v : r.mesh.vertices()) surface.extend(to_eigen(r.mesh.point(v)));
+  EXPECT_LT(surface.diagonal(), 1.1 * lamp.diagonal());
 }
 
 INSTANTIATE_TEST_SUITE_P(RealSketches, SurfaceData, ::testing::ValuesIn(real_sketches()),

@@ -49,6 +49,47 @@ TEST(Decorations, AnAntennaHangingByOneEndIsFound) {
   EXPECT_EQ(found[0].kind, DecorationKind::Dangling);
 }
 
+// A sphere with a cable: a long curve hanging from it whose far end carries a plug (a small loop
+// and a short stroke across it, touching only the cable).
+Sketch sphere_with_cable() {
+  Sketch sketch = testing::sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return V3(0.5 + t, -0.3 * std::sin(M_PI * t), 0.2 * t); }, 0.0, 1.0, 0.005));
+  const V3 end(1.5, 0.0, 0.2);
+  sketch.strokes.push_back(testing::sample_curve(
+      [&](double t) { return V3(end + V3(0.04 + 0.04 * std::cos(t), 0.04 * std::sin(t), 0.0)); }, 0.0,
+      2 * M_PI, 0.005));
+  sketch.strokes.push_back(segment(end + V3(0.04, -0.06, 0.0), end + V3(0.04, 0.06, 0.0)));
+  return sketch;
+}
+
+TEST(Decorations, ACableIsFoundWithThePlugItCarries) {
+  const Sketch s = prepared(sphere_with_cable());
+  const auto found = find_decorations(s);
+  ASSERT_EQ(found.size(), 3u);
+  const std::size_t cable = s.strokes.size() - 3;
+  EXPECT_EQ(found[0].stroke, cable);
+  EXPECT_EQ(found[0].kind, DecorationKind::Dangling);
+  for (std::size_t k = 1; k < 3; ++k) {
+    EXPECT_EQ(found[k].stroke, cable + k);
+    EXPECT_EQ(found[k].kind, DecorationKind::SmallGroup);
+  }
+}
+
+TEST(Decorations, AStrokeCarryingALargeGroupIsNotACable) {
+  // The same curve ending at a second sphere (a third of the sketch's diagonal across): an arm
+  // holding a part, not a cable.
+  Sketch sketch = testing::sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return V3(0.5 + t, -0.3 * std::sin(M_PI * t), 0.2 * t); }, 0.0, 1.0, 0.005));
+  Sketch other = testing::sphere_sketch(0.25, 4);
+  for (Stroke& stroke : other.strokes) {
+    for (V3& p : stroke.points) p += V3(1.75, 0.0, 0.2);
+    sketch.strokes.push_back(stroke);
+  }
+  EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+}
+
 TEST(Decorations, ADotApartIsFoundAndAClosedOutlineOnAFaceIsNot) {
   Sketch sketch = testing::cube_sketch();
   sketch.strokes.push_back(segment(V3(1.0, 1.0, 1.0), V3(1.004, 1.0, 1.0)));  // a dot
