@@ -71,7 +71,9 @@ TEST(DecorationData, ALampsCableAndPlugAreLeftOut) {
   const SurfaceResult r = Surfacer(params).run(sketch);
   std::size_t dangling = 0, carried = 0;
   for (const Decoration& d : r.report.decorations) {
-    if (d.stroke == cable) EXPECT_EQ(d.kind, DecorationKind::Dangling);
+    if (d.stroke == cable) {
+      EXPECT_EQ(d.kind, DecorationKind::Dangling);
+    }
     dangling += d.kind == DecorationKind::Dangling;
     carried += d.stroke > cable && d.stroke <= cable + 6 && d.kind == DecorationKind::SmallGroup;
   }
