@@ -10,6 +10,7 @@
 #include "surfacing/error.h"
 #include "surfacing/extract/mirror.h"
 #include "surfacing/sketch/decorations.h"
+#include "surfacing/sketch/scribbles.h"
 #include "surfacing/sketch/symmetry.h"
 
 namespace sketchsurf {
@@ -28,6 +29,14 @@ bool PrepareOptions::valid(std::string* why) const {
 }
 
 bool Params::valid(std::string* why) const {
+  if (!(checks.refuse_scribbled >= 0.0 && checks.refuse_scribbled <= 1.0)) {
+    if (why) *why = "checks.refuse_scribbled must be in [0, 1]";
+    return false;
+  }
+  if (!(checks.scribble_fill >= 1.0 && std::isfinite(checks.scribble_fill))) {
+    if (why) *why = "checks.scribble_fill must be at least 1";
+    return false;
+  }
   return prepare.valid(why) && proxy.valid(why) && segment.valid(why) && extract.valid(why);
 }
 
@@ -100,6 +109,8 @@ const std::map<std::string, Setter>& parameter_table() {
       {"segment.simplify", setter([](Params& p) -> auto& { return p.segment.simplify; })},
       {"segment.threads", setter([](Params& p) -> auto& { return p.segment.threads; })},
       {"checks.refuse_score", setter([](Params& p) -> auto& { return p.checks.refuse_score; })},
+      {"checks.refuse_scribbled", setter([](Params& p) -> auto& { return p.checks.refuse_scribbled; })},
+      {"checks.scribble_fill", setter([](Params& p) -> auto& { return p.checks.scribble_fill; })},
       {"extract.gamma_2d", setter([](Params& p) -> auto& { return p.extract.energy.gamma_2d; })},
       {"extract.gamma_1d", setter([](Params& p) -> auto& { return p.extract.energy.gamma_1d; })},
       {"extract.smooth_angle", setter([](Params& p) -> auto& { return p.extract.energy.smooth_angle; })},
@@ -194,6 +205,19 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
     if (std::all_of(sketch.strokes.begin(), sketch.strokes.end(), [](const Stroke& s) { return s.ignored; }))
       throw Error(ErrorKind::Input, "no stroke is left to surface once the strokes that depict no "
                                     "surface are ignored; keep them with prepare.ignore_decorations = 0");
+  }
+  // Scribbled ink depicts no surface: refused here, before the work of surfacing it into a blob.
+  if (!user_proxy && params_.checks.refuse_score > 0.0 && params_.checks.refuse_scribbled > 0.0) {
+    const double scribbled = scribbled_share(sketch, params_.checks.scribble_fill);
+    if (scribbled > params_.checks.refuse_scribbled) {
+      std::ostringstream refusal;
+      refusal << std::fixed << std::setprecision(0) << "the strokes do not seem to depict one surface "
+              << "(hatching, writing or a painterly scene?): " << 100.0 * scribbled
+              << "% of the ink is scribbles, strokes that wind round and round over an area "
+              << "instead of drawing a curve. Draw the object's outlines and cross-sections, give a "
+              << "proxy mesh, or surface it anyway (checks.refuse_score = 0; the command line's --force)";
+      throw Error::processing(refusal.str());
+    }
   }
   const auto is_boundary = [](const Stroke& s) { return s.boundary && !s.ignored; };
   if (params_.prepare.open_rims && std::none_of(sketch.strokes.begin(), sketch.strokes.end(), is_boundary)) {

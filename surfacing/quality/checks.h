@@ -31,6 +31,10 @@ struct CheckOptions {
                                 ///< diagonal) exceeds this: a surface that neither passes through
                                 ///< the strokes nor stays within them is not what they depict
                                 ///< (hatching, writing, a painterly scene); 0 = never refuse
+                                ///< (neither this nor scribbles)
+  double refuse_scribbled = 0.5;  ///< ... and refuses a sketch, before surfacing, when more than
+                                  ///< this share of its ink is scribbles (scribbles.h); 0 = off
+  double scribble_fill = 5.0;     ///< a stroke is a scribble when its stroke_fill() exceeds this
   unsigned seed = 1;
   unsigned threads = 0;         ///< 0 = all; the result does not depend on it
 };

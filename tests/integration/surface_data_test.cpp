@@ -2,7 +2,8 @@
 // VNS (.obj) sketch in ../shared/data, through the whole pipeline with an automatic proxy built by
 // the test at a coarser resolution than the paper's (to keep the test short): the median distance
 // from the stroke points to the surface must stay under 1% of the bounding-box diagonal. And the
-// flower, a scene of single lines that depicts no surface, is refused with the default parameters;
+// flower, a scene of single lines that depicts no surface, and an Open Brush sketch of scribbled
+// masses are refused with the default parameters;
 // a lamp's cable and its plug are left out of the surface.
 
 #include <gtest/gtest.h>
@@ -55,6 +56,17 @@ TEST(NonSurfaceData, TheFlowerIsRefused) {
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Processing) << e.what();
     EXPECT_NE(std::string(e.what()).find("do not seem to depict one surface"), std::string::npos) << e.what();
+  }
+}
+
+TEST(NonSurfaceData, TheScribbledSketchIsRefused) {
+  const fs::path file = fs::path(SKETCHSURF_DATA_DIR) / "tilt" / "sketch1.tilt";
+  try {
+    surface(read_sketch(file));
+    FAIL() << file << " was surfaced";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Processing) << e.what();
+    EXPECT_NE(std::string(e.what()).find("of the ink is scribbles"), std::string::npos) << e.what();
   }
 }
 

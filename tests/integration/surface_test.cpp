@@ -126,6 +126,34 @@ TEST(Surface, AHatchingSceneIsRefusedWithAClearMessage) {
   }
 }
 
+// A scene of scribbled masses (strokes sweeping back and forth over an area, as painterly fills
+// are drawn) depicts no surface: refused before surfacing, the message naming the scribbles; with
+// the refusal off it is surfaced as asked.
+TEST(Surface, AScribbledSceneIsRefusedBeforeSurfacing) {
+  Sketch sketch;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d at(0.4 * k, 0.2 * (k % 2), 0.3 * (k / 2));
+    sketch.strokes.push_back(testing::sample_curve(
+        [&](double t) {
+          return Eigen::Vector3d(at + 0.2 * Eigen::Vector3d(std::sin((7 + k) * t), std::sin(11 * t + 0.3),
+                                                           0.3 * std::sin(5 * t)));
+        },
+        0.0, 2 * M_PI, 0.002));
+  }
+  try {
+    surface(sketch);
+    FAIL() << "a scribbled scene was surfaced";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Processing);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("100% of the ink is scribbles"), std::string::npos) << what;
+    EXPECT_NE(what.find("--force"), std::string::npos) << what;
+  }
+  Params forced;
+  forced.checks.refuse_score = 0.0;
+  EXPECT_GT(surface(sketch, forced).mesh.n_faces(), 0u);
+}
+
 // A smooth closed shape drawn as a clean curve network: no crease, so the final surface is at least
 // as accurate as the automatic proxy it started from (the proxy is kept where one quartic per
 // region would pass farther from the strokes).
