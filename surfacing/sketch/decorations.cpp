@@ -62,6 +62,19 @@ void merge(BoundingBox& box, const BoundingBox& other) {
   box.max = box.max.cwiseMax(other.max);
 }
 
+// Whether `free` holds at every point of `stroke` farther than `share` of its length from both
+// ends.
+template <class Free>
+bool middle_free(const Stroke& stroke, double share, const Free& free) {
+  const double length = stroke.length();
+  double along = 0.0;
+  for (std::size_t i = 0; i < stroke.size(); ++i) {
+    if (i > 0) along += (stroke.points[i] - stroke.points[i - 1]).norm();
+    if (along > share * length && along < (1.0 - share) * length && !free(stroke.points[i])) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool DecorationOptions::valid(std::string* why) const {
@@ -178,14 +191,19 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
     // imprecise junction of a sparse curve network misses its neighbour by a little, an antenna
     // by a lot.
     const double limit = std::min(options.carried * diagonal, 0.5 * stroke.length());
+    const auto only_group = [&](const V3& p) {
+      const std::vector<std::size_t> near = grid.strokes_near(p, s, free);
+      return std::all_of(near.begin(), near.end(), [&](std::size_t t) {
+        return std::find(group.begin(), group.end(), t) != group.end();
+      });
+    };
     for (const bool at_start : {true, false}) {
       if (!carried(s, at_start, limit, group)) continue;
-      const V3& free_end = at_start ? stroke.points.back() : stroke.points.front();
-      const std::vector<std::size_t> near = grid.strokes_near(free_end, s, free);
-      if (!std::all_of(near.begin(), near.end(), [&](std::size_t t) {
-            return std::find(group.begin(), group.end(), t) != group.end();
-          }))
-        continue;
+      if (!only_group(at_start ? stroke.points.back() : stroke.points.front())) continue;
+      // A stroke carrying a group runs free of the rest between its ends (a cable across the
+      // floor); one that runs beside other strokes is an edge of a thin part (a chair's leg whose
+      // foot ring it touches), not a cable.
+      if (!group.empty() && !middle_free(stroke, options.end_share, only_group)) continue;
       dangling[s] = 1;
       for (std::size_t t : group) small[t] = 1;
       break;

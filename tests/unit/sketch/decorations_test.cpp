@@ -76,6 +76,15 @@ TEST(Decorations, ACableIsFoundWithThePlugItCarries) {
   }
 }
 
+TEST(Decorations, AStrokeRunningBesideAnotherIsAThinPartsEdgeNotACable) {
+  // A second stroke from the sphere runs along the cable's first 70%, 0.08 away (3% of the
+  // diagonal): the two are the edges of a thin part (a leg, its foot ring the "plug").
+  Sketch sketch = sphere_with_cable();
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return V3(0.5 + t, -0.3 * std::sin(M_PI * t) + 0.08, 0.2 * t); }, 0.0, 0.7, 0.005));
+  EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+}
+
 TEST(Decorations, AStrokeCarryingALargeGroupIsNotACable) {
   // The same curve ending at a second sphere (a third of the sketch's diagonal across): an arm
   // holding a part, not a cable.
