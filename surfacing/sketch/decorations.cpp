@@ -62,17 +62,20 @@ void merge(BoundingBox& box, const BoundingBox& other) {
   box.max = box.max.cwiseMax(other.max);
 }
 
-// Whether `free` holds at every point of `stroke` farther than `share` of its length from both
-// ends.
+// Share of the points of `stroke` farther than `share` of its length from both ends at which
+// `free` does not hold (1 when there are none).
 template <class Free>
-bool middle_free(const Stroke& stroke, double share, const Free& free) {
+double middle_taken(const Stroke& stroke, double share, const Free& free) {
   const double length = stroke.length();
   double along = 0.0;
+  std::size_t middle = 0, taken = 0;
   for (std::size_t i = 0; i < stroke.size(); ++i) {
     if (i > 0) along += (stroke.points[i] - stroke.points[i - 1]).norm();
-    if (along > share * length && along < (1.0 - share) * length && !free(stroke.points[i])) return false;
+    if (along <= share * length || along >= (1.0 - share) * length) continue;
+    ++middle;
+    taken += !free(stroke.points[i]);
   }
-  return true;
+  return middle > 0 ? static_cast<double>(taken) / static_cast<double>(middle) : 1.0;
 }
 
 }  // namespace
@@ -201,9 +204,9 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
       if (!carried(s, at_start, limit, group)) continue;
       if (!only_group(at_start ? stroke.points.back() : stroke.points.front())) continue;
       // A stroke carrying a group runs free of the rest between its ends (a cable across the
-      // floor); one that runs beside other strokes is an edge of a thin part (a chair's leg whose
-      // foot ring it touches), not a cable.
-      if (!group.empty() && !middle_free(stroke, options.end_share, only_group)) continue;
+      // floor, a string passing by a handle); one that runs beside other strokes for most of
+      // its middle is an edge of a thin part (a chair's leg whose foot ring it touches).
+      if (!group.empty() && middle_taken(stroke, options.end_share, only_group) > 0.5) continue;
       dangling[s] = 1;
       for (std::size_t t : group) small[t] = 1;
       break;

@@ -42,8 +42,9 @@ struct Decoration {
 /// apart from the largest group (dots, small scribbles); strokes longer than min_dangling that
 /// touch the others by at most one end while the other end is free_end away from them (closed
 /// strokes excepted); and the small group such a stroke carries, when the strokes it touches away
-/// from its attached end reach the rest only through it and the stroke's middle half runs
-/// free_end away from every stroke but them (they are reported as a small group). Strokes already ignored, boundary strokes and
+/// from its attached end reach the rest only through it and at most half of the stroke's
+/// middle (between the end shares) comes within free_end of other strokes (they are reported
+/// as a small group). Strokes already ignored, boundary strokes and
 /// strokes of fewer than 2 points are left out of the test (boundary strokes still count as
 /// neighbours). Deterministic; `sketch` should be resampled (the test runs on its points).
 std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationOptions& options = {});

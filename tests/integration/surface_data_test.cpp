@@ -4,7 +4,7 @@
 // from the stroke points to the surface must stay under 1% of the bounding-box diagonal. And the
 // flower, a scene of single lines that depicts no surface, and an Open Brush sketch of scribbled
 // masses are refused with the default parameters;
-// a lamp's cable and its plug are left out of the surface.
+// a lamp's cable and its plug, and a torch's ring on a string, are left out of the surface.
 
 #include <gtest/gtest.h>
 
@@ -100,6 +100,19 @@ TEST(DecorationData, ALampsCableAndPlugAreLeftOut) {
       for (const auto& p : sketch.strokes[s].points) lamp.extend(p);
   for (const auto v : r.mesh.vertices()) surface.extend(to_eigen(r.mesh.point(v)));
   EXPECT_LT(surface.diagonal(), 1.1 * lamp.diagonal());
+}
+
+TEST(DecorationData, ATorchsHangingRingIsLeftOutAndItsHandleKept) {
+  // tilt/Dungeon_Torch: a ring on a string hangs from the handle; the string passes by the
+  // handle's strokes for part of its length, the handle's own strokes run beside each other.
+  const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "tilt" / "Dungeon_Torch.tilt");
+  Params params;
+  params.proxy.edge = 0.014;
+  params.segment.restarts = 2;
+  const SurfaceResult r = Surfacer(params).run(sketch);
+  ASSERT_EQ(r.report.decorations.size(), 2u);
+  EXPECT_EQ(r.report.decorations[0].kind, DecorationKind::Dangling);
+  EXPECT_EQ(r.report.decorations[1].kind, DecorationKind::SmallGroup);
 }
 
 INSTANTIATE_TEST_SUITE_P(RealSketches, SurfaceData, ::testing::ValuesIn(real_sketches()),
