@@ -112,18 +112,24 @@ TEST(Surface, AnOverSketchedCubeHasSixFacesAndNoHole) {
   EXPECT_LT(r.report.stroke_distance.p95, 0.01);
 }
 
-// Shading strokes scattered in space depict no surface: refused with a message that says why and
-// what to do, not a blob.
-TEST(Surface, AHatchingSceneIsRefusedWithAClearMessage) {
+// Surfacing `sketch` with the default parameters is refused as depicting no surface, with a
+// message that says why and what to do (each of `phrases`).
+void expect_refused(const Sketch& sketch, const std::vector<std::string>& phrases) {
   try {
-    surface(testing::hatching_sketch(10, 3));
-    FAIL() << "a hatching scene was surfaced";
+    surface(sketch);
+    FAIL() << "a scene that depicts no surface was surfaced";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Processing);
     const std::string what = e.what();
     EXPECT_NE(what.find("do not seem to depict one surface"), std::string::npos) << what;
-    EXPECT_NE(what.find("proxy mesh"), std::string::npos) << what;
+    for (const std::string& phrase : phrases) EXPECT_NE(what.find(phrase), std::string::npos) << what;
   }
+}
+
+// Shading strokes scattered in space depict no surface: refused with a message that says why and
+// what to do, not a blob.
+TEST(Surface, AHatchingSceneIsRefusedWithAClearMessage) {
+  expect_refused(testing::hatching_sketch(10, 3), {"proxy mesh"});
 }
 
 // A scene of scribbled masses (strokes sweeping back and forth over an area, as painterly fills
@@ -140,15 +146,7 @@ TEST(Surface, AScribbledSceneIsRefusedBeforeSurfacing) {
         },
         0.0, 2 * M_PI, 0.002));
   }
-  try {
-    surface(sketch);
-    FAIL() << "a scribbled scene was surfaced";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::Processing);
-    const std::string what = e.what();
-    EXPECT_NE(what.find("100% of the ink is scribbles"), std::string::npos) << what;
-    EXPECT_NE(what.find("--force"), std::string::npos) << what;
-  }
+  expect_refused(sketch, {"100% of the ink is scribbles", "--force"});
   Params forced;
   forced.checks.refuse_score = 0.0;
   EXPECT_GT(surface(sketch, forced).mesh.n_faces(), 0u);
