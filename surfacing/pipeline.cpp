@@ -91,6 +91,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.confine_margin", setter([](Params& p) -> auto& { return p.proxy.confine_margin; })},
       {"proxy.confine_radius", setter([](Params& p) -> auto& { return p.proxy.confine_radius; })},
       {"proxy.confine_box", setter([](Params& p) -> auto& { return p.proxy.confine_box; })},
+      {"proxy.window_value", setter([](Params& p) -> auto& { return p.proxy.window_value; })},
       {"proxy.min_component", setter([](Params& p) -> auto& { return p.proxy.min_component; })},
       {"proxy.vipss_tolerance", setter([](Params& p) -> auto& { return p.proxy.vipss_tolerance; })},
       {"proxy.vipss_remesh_iterations", setter([](Params& p) -> auto& { return p.proxy.vipss_remesh_iterations; })},

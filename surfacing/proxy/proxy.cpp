@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <sstream>
 #include <vector>
@@ -119,6 +120,30 @@ Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge) {
   return targets;
 }
 
+// A window through a thin double wall (a mug's, a plate's): between strokes, the inside layer of
+// VIPSS's function pinches out and leaves a hole; its centre is a saddle of f with a small
+// positive value, a maximum within the window's plane and a minimum across it. It is closed by
+// a bump that lowers f within an ellipsoid around the centre: its plane's radii cover the hole,
+// the one across it a few grid cells, so the walls nearby barely move.
+struct Window {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // columns: the window's plane, then across
+  Eigen::Vector3d radii = Eigen::Vector3d::Ones();
+  double depth = 0.0;  // the bump's value at the centre, distance units
+
+  // The bump depth * (1 - q)^3 with q the squared ellipsoidal radius (0 for q >= 1), and its
+  // gradient added to `gradient` (if given).
+  double value(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+    const Eigen::Vector3d local = (axes.transpose() * (p - centre)).cwiseQuotient(radii);
+    const double q = local.squaredNorm();
+    if (q >= 1.0) return 0.0;
+    const double u = 1.0 - q;
+    if (gradient)
+      *gradient += axes * (-6.0 * depth * u * u * local.cwiseQuotient(radii));
+    return depth * u * u * u;
+  }
+};
+
 // The surface the automatic proxy follows: VIPSS's zero set inside the strokes' neighbourhood,
 // g(x) = max(s f(x), d(x) - radius), with s = sign / G making f positive outside (at the box
 // corners) and a distance to first order near the samples (G: the median |grad f| there), and d
@@ -126,13 +151,17 @@ Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge) {
 // stroke is inside; so where the zero set leaves the strokes (a sheet running to the box, a fin)
 // it is cut at `radius` and closed by the strokes' offset surface; where it stays near the
 // strokes, it is VIPSS's. The offset surface itself stops at `within` (the strokes' box, grown a
-// little): a cap never reaches past the strokes' extent. radius = 0: f alone.
+// little): a cap never reaches past the strokes' extent. radius = 0: f alone. Windows to close
+// (see Window) lower s f by their bumps.
 class ConfinedField {
  public:
   ConfinedField(const HermiteRbf& f, double scale, const Eigen::MatrixX3d& strokes,
                 const PointGrid& grid, double radius, const BoundingBox& within, double band)
       : f_(f), scale_(scale), strokes_(strokes), grid_(grid), radius_(radius), within_(within),
         band_(band) {}
+
+  double scale() const { return scale_; }
+  void set_windows(std::vector<Window> windows) { windows_ = std::move(windows); }
 
   // g at p (and, with `to_surface`, the Newton step that moves p onto g = 0 to first order).
   double value(const Eigen::Vector3d& p, Eigen::Vector3d* to_surface = nullptr) const {
@@ -155,16 +184,19 @@ class ConfinedField {
         }
       if (cap > band_ && !to_surface) return cap;  // outside whatever f says
     }
-    if (!to_surface) return std::max(cap, scale_ * f_.value(p));
+    if (!to_surface) return std::max(cap, scale_ * f_.value(p) - bumps(p, nullptr));
     Eigen::Vector3d g;
     const double value = f_.value_gradient(p, &g);
-    const double own = scale_ * value;
+    Eigen::Vector3d lowered = Eigen::Vector3d::Zero();
+    const double own = scale_ * value - (windows_.empty() ? 0.0 : bumps(p, &lowered));
     if (cap > own) {
       *to_surface = -cap * away;
       return cap;
     }
+    if (!windows_.empty()) g = scale_ * g - lowered;  // the gradient of own, not of f
     const double g2 = g.squaredNorm();
-    *to_surface = g2 > 0.0 ? Eigen::Vector3d(-value / g2 * g) : Eigen::Vector3d::Zero();
+    const double over = windows_.empty() ? value : own;
+    *to_surface = g2 > 0.0 ? Eigen::Vector3d(-over / g2 * g) : Eigen::Vector3d::Zero();
     return own;
   }
 
@@ -176,6 +208,13 @@ class ConfinedField {
   double radius_;
   BoundingBox within_;
   double band_;
+  std::vector<Window> windows_;
+
+  double bumps(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+    double sum = 0.0;
+    for (const Window& w : windows_) sum += w.value(p, gradient);
+    return sum;
+  }
 };
 
 // The factor that turns f into a distance to first order near the samples, positive outside:
@@ -206,6 +245,114 @@ double distance_scale(const HermiteRbf& f, const Eigen::MatrixX3d& samples, cons
   const auto mid = norms.begin() + static_cast<std::ptrdiff_t>(norms.size() / 2);
   std::nth_element(norms.begin(), mid, norms.end());
   return (2 * positive >= total ? 1.0 : -1.0) / std::max(*mid, 1e-300);
+}
+
+// The windows (see Window) of the distance-scaled function s f: its saddles with a value in
+// (0, most), two negative curvatures (the window's plane) and one positive (across it). Found by
+// Newton's method from the points of a grid of spacing h over `box`, within `near` of a stroke,
+// where the central-difference gradient norm is a local minimum (among the 26 neighbours
+// outside the surface) below 0.8: s f is a distance to first order near the surface, gradient
+// norm near 1 but at critical points.
+// The hole's radius in each plane direction is sqrt(2 value / |curvature|) (the saddle as a
+// quadric); the bump covers twice that (at most 5 h), `across` across and lowers s f by value +
+// across / 4 at the centre: a membrane about as thick as the walls around it.
+std::vector<Window> find_windows(const HermiteRbf& f, double scale, const PointGrid& strokes,
+                                 double near, const BoundingBox& box, double h, double most,
+                                 double across, unsigned threads) {
+  const Eigen::Vector3d extent = box.max - box.min;
+  std::array<int, 3> n{};
+  for (int a = 0; a < 3; ++a) n[a] = static_cast<int>(std::ceil(extent[a] / h)) + 1;
+  const auto id = [&](int i, int j, int k) {
+    return (static_cast<std::size_t>(k) * n[1] + j) * n[0] + i;
+  };
+  const std::size_t count = static_cast<std::size_t>(n[0]) * n[1] * n[2];
+  std::vector<std::size_t> near_ids;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        if (strokes.nearest(box.min + h * Eigen::Vector3d(i, j, k), near).first >= 0)
+          near_ids.push_back(id(i, j, k));
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(near_ids.size()), 3);
+  for (std::size_t r = 0; r < near_ids.size(); ++r) {
+    const std::size_t q = near_ids[r];
+    const Eigen::Vector3d ijk(static_cast<double>(q % n[0]), static_cast<double>(q / n[0] % n[1]),
+                              static_cast<double>(q / n[0] / n[1]));
+    points.row(static_cast<Eigen::Index>(r)) = (box.min + h * ijk).transpose();
+  }
+  Eigen::VectorXd near_values;
+  f.values(points, near_values, threads);
+  constexpr double kUnknown = std::numeric_limits<double>::infinity();
+  std::vector<double> value(count, kUnknown), slope(count, kUnknown);
+  for (std::size_t r = 0; r < near_ids.size(); ++r)
+    value[near_ids[r]] = scale * near_values[static_cast<Eigen::Index>(r)];
+  const auto inner = [&](int i, int j, int k) {
+    return i > 0 && j > 0 && k > 0 && i + 1 < n[0] && j + 1 < n[1] && k + 1 < n[2];
+  };
+  for (int k = 1; k + 1 < n[2]; ++k)
+    for (int j = 1; j + 1 < n[1]; ++j)
+      for (int i = 1; i + 1 < n[0]; ++i) {
+        const Eigen::Vector3d d(value[id(i + 1, j, k)] - value[id(i - 1, j, k)],
+                                value[id(i, j + 1, k)] - value[id(i, j - 1, k)],
+                                value[id(i, j, k + 1)] - value[id(i, j, k - 1)]);
+        if (d.allFinite()) slope[id(i, j, k)] = d.norm() / (2.0 * h);
+      }
+  const auto value_gradient = [&](const Eigen::Vector3d& x, Eigen::Vector3d* g) {
+    const double v = scale * f.value_gradient(x, g);
+    *g *= scale;
+    return v;
+  };
+  std::vector<Window> windows;
+  for (int k = 1; k + 1 < n[2]; ++k)
+    for (int j = 1; j + 1 < n[1]; ++j)
+      for (int i = 1; i + 1 < n[0]; ++i) {
+        const double v = value[id(i, j, k)], g = slope[id(i, j, k)];
+        if (!(v > 0.0 && v < most && g < 0.8)) continue;
+        bool minimum = true;
+        for (int c = -1; c <= 1 && minimum; ++c)
+          for (int b = -1; b <= 1 && minimum; ++b)
+            for (int a = -1; a <= 1 && minimum; ++a)
+              if ((a || b || c) && inner(i + a, j + b, k + c) &&
+                  value[id(i + a, j + b, k + c)] > 0.0)
+                minimum = !(slope[id(i + a, j + b, k + c)] < g);
+        if (!minimum) continue;
+        const Eigen::Vector3d start = box.min + h * Eigen::Vector3d(i, j, k);
+        Eigen::Vector3d x = start, grad;
+        Eigen::Matrix3d hessian;
+        bool converged = false;
+        for (int step = 0; step < 20 && !converged; ++step) {
+          constexpr double kDelta = 1e-5;
+          for (int a = 0; a < 3; ++a) {
+            Eigen::Vector3d plus, minus;
+            value_gradient(x + kDelta * Eigen::Vector3d::Unit(a), &plus);
+            value_gradient(x - kDelta * Eigen::Vector3d::Unit(a), &minus);
+            hessian.col(a) = (plus - minus) / (2.0 * kDelta);
+          }
+          hessian = (0.5 * (hessian + hessian.transpose())).eval();
+          value_gradient(x, &grad);
+          converged = grad.norm() < 1e-6;
+          Eigen::Vector3d move = -hessian.fullPivLu().solve(grad);
+          if (!move.allFinite()) break;
+          if (move.norm() > h) move *= h / move.norm();
+          if (!converged) x += move;
+        }
+        if (!converged || (x - start).norm() > 5.0 * h) continue;
+        const double centre = value_gradient(x, &grad);
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(hessian);
+        const Eigen::Vector3d curvature = eig.eigenvalues();  // ascending
+        if (!(centre > 0.0 && centre < most && curvature[1] < 0.0 && curvature[2] > 0.0)) continue;
+        bool seen = false;
+        for (const Window& w : windows) seen = seen || (w.centre - x).norm() < h;
+        if (seen) continue;
+        Window w;
+        w.centre = x;
+        w.axes = eig.eigenvectors();
+        for (int a = 0; a < 2; ++a)
+          w.radii[a] = std::min(5.0 * h, 2.0 * std::sqrt(2.0 * centre / -curvature[a]));
+        w.radii[2] = across;
+        w.depth = centre + across / 4.0;
+        windows.push_back(w);
+      }
+  return windows;
 }
 
 // Removes the connected components whose area is below `min_fraction` of the whole: specks of
@@ -331,6 +478,8 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(far_tie >= 0.0 && far_tie < 1.0)) return fail("proxy far_tie must be in [0, 1)");
   if (far_extra_genus < 0) return fail("proxy far_extra_genus must be >= 0");
   if (!(far_most > 0.0 && far_most <= 1.0)) return fail("proxy far_most must be in (0, 1]");
+  if (!(window_value >= 0.0 && window_value < 0.5))
+    return fail("proxy window_value must be in [0, 0.5)");
   if (!(min_component >= 0.0 && min_component < 1.0))
     return fail("proxy min_component must be in [0, 1)");
   if (projection_steps < 0) return fail("proxy projection_steps must be >= 0");
@@ -445,22 +594,46 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                                               distance_scale(c.vipss->function, samples, box),
                                               stroke_points, stroke_grid, r.confine_radius, within,
                                               2.0 * options.cell);
-    const ConfinedField& g = *c.field;
-    const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
-      values.resize(p.rows());
-      const auto rows = static_cast<std::size_t>(p.rows());
-      parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t k) {
-        for (std::size_t i = k * kChunk; i < std::min(rows, (k + 1) * kChunk); ++i)
-          values[static_cast<Eigen::Index>(i)] = g.value(p.row(static_cast<Eigen::Index>(i)).transpose());
-      });
+    const auto polygonise = [&](const ConfinedField& g, TriMesh& mesh) {
+      const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
+        values.resize(p.rows());
+        const auto rows = static_cast<std::size_t>(p.rows());
+        parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t k) {
+          for (std::size_t i = k * kChunk; i < std::min(rows, (k + 1) * kChunk); ++i)
+            values[static_cast<Eigen::Index>(i)] =
+                g.value(p.row(static_cast<Eigen::Index>(i)).transpose());
+        });
+      };
+      PolygonizeSummary poly_summary;
+      mesh = polygonize(field, samples, box, poly, progress, &poly_summary);
+      c.evaluations += poly_summary.evaluations;
+      if (mesh.n_faces() > 0) drop_specks(mesh, options.min_component);
+      return mesh_topology(mesh);
     };
-    PolygonizeSummary poly_summary;
-    c.mesh = polygonize(field, samples, box, poly, progress, &poly_summary);
-    c.evaluations = poly_summary.evaluations;
+    MeshTopology topology = polygonise(*c.field, c.mesh);
+    if (options.window_value > 0.0 && topology.genus > 0) {
+      // Handles may be windows through thin double walls: closed where that removes handles
+      // without splitting the surface. Searched on a grid of two cells within ten cells of a
+      // stroke: a window lies on a wall between strokes, a few cells from them.
+      std::vector<Window> windows =
+          find_windows(c.vipss->function, c.field->scale(), stroke_grid, 10.0 * options.cell, box,
+                       2.0 * options.cell, options.window_value, 4.0 * options.cell, threads);
+      if (!windows.empty()) {
+        auto closed = std::make_unique<ConfinedField>(*c.field);
+        closed->set_windows(std::move(windows));
+        TriMesh mesh;
+        const MeshTopology without = polygonise(*closed, mesh);
+        if (mesh.n_faces() > 0 && without.genus < topology.genus &&
+            without.components <= topology.components) {
+          c.field = std::move(closed);
+          c.mesh = std::move(mesh);
+          topology = without;
+        }
+      }
+    }
     if (c.mesh.n_faces() > 0) {
-      drop_specks(c.mesh, options.min_component);
       c.far = far_fraction(c.mesh, stroke_grid, options.far_distance);
-      c.genus = mesh_topology(c.mesh).genus;
+      c.genus = topology.genus;
     }
     r.polygonize_seconds += seconds_since(t);
     return c;

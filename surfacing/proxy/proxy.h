@@ -47,6 +47,14 @@ struct ProxyOptions {
                                 ///< the strokes' bounding box either (fraction of diagonal): the
                                 ///< offset surface that closes a cut would reach confine_radius
                                 ///< past the outermost strokes
+  double window_value = 0.025;  ///< where a solve's surface has handles, the windows through thin
+                                ///< double walls are closed: saddles of the distance-scaled VIPSS
+                                ///< function with a value below this (fraction of diagonal; 0 =
+                                ///< off), a maximum within the window's plane and a minimum
+                                ///< across, as between two walls whose inside layer pinches out
+                                ///< where no stroke holds it. Kept only when it removes handles
+                                ///< and splits nothing. Openings the strokes depict (a mug's
+                                ///< handle, holes through a plate) have larger values
   double min_component = 0.01;  ///< parts of the polygonised surface with less than this fraction
                                 ///< of its area are dropped (specks the confinement cuts off)
   double vipss_tolerance = 1e-7;  ///< L-BFGS relative energy change at which the normals are
