@@ -68,9 +68,9 @@ TEST(ProxyShape, MugIsOneClosedPartWithinItsStrokes) {
   expect_within_strokes(m, 0.05);
 }
 
-// Not reached yet in the net style: the mug's proxy keeps the handle but also one window through
-// the double wall (genus 2; the windows are closed where their saddle is shallow, this one is
-// not). Enable when the proxy keeps the handle alone.
+// Not reached yet in the net style: the proxy has genus 2, two windows through the double wall
+// left open near the rim, and the handle's opening filled by a bulge far from the strokes.
+// Enable when the proxy keeps the handle alone.
 TEST(ProxyShape, DISABLED_MugKeepsItsHandle) {
   const Made m = proxy_of("mug");
   EXPECT_EQ(m.topology.genus, 1);
