@@ -249,10 +249,10 @@ double distance_scale(const HermiteRbf& f, const Eigen::MatrixX3d& samples, cons
 
 // The windows (see Window) of the distance-scaled function s f: its saddles with a value in
 // (0, most), two negative curvatures (the window's plane) and one positive (across it). Found by
-// Newton's method from the points of a grid of spacing h over `box`, within `near` of a stroke,
-// where the central-difference gradient norm is a local minimum (among the 26 neighbours
-// outside the surface) below 0.8: s f is a distance to first order near the surface, gradient
-// norm near 1 but at critical points.
+// Newton's method (ending within 5 h of its start) from the points of a grid of spacing h over
+// `box`, within `near` of a stroke, where the central-difference gradient norm is a local minimum
+// (among the 26 neighbours outside the surface) below 0.8: s f is a distance to first order near
+// the surface, gradient norm near 1 but at critical points.
 // The hole's radius in each plane direction is sqrt(2 value / |curvature|) (the saddle as a
 // quadric); the bump covers twice that (at most 5 h), `across` across and lowers s f by value +
 // across / 4 at the centre: a membrane about as thick as the walls around it.
