@@ -140,7 +140,7 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
   // The strokes that touch stroke `s` away from its end `at_start` (start or end) and reach the
   // other strokes only through `s`, when their extent stays below `limit`: what a stroke hanging
   // by that end carries at its free end. False when they reach the strokes at the attached end,
-  // or grow larger.
+  // grow larger or include a boundary stroke.
   const auto carried = [&](std::size_t s, bool at_start, double limit, std::vector<std::size_t>& group) {
     const double share = options.end_share;
     const auto attached = [&](const Touch& t) { return at_start ? t.first <= share : t.last >= 1.0 - share; };
@@ -158,6 +158,7 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
       }
     BoundingBox box;
     for (std::size_t k = 0; k < group.size(); ++k) {
+      if (sketch.strokes[group[k]].boundary) return false;  // a surface's border the user marked
       merge(box, stroke_box[group[k]]);
       if (box.diagonal() >= limit) return false;
       for (const Touch& t : touches[group[k]]) {

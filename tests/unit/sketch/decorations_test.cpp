@@ -120,6 +120,10 @@ TEST(Decorations, StrokesTheUserMarkedAreLeftAlone) {
   sketch.strokes.back().boundary = false;
   sketch.strokes.back().ignored = true;
   EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+  // A boundary stroke is never carried off with a cable.
+  Sketch cable = sphere_with_cable();
+  cable.strokes.back().boundary = true;
+  EXPECT_TRUE(find_decorations(prepared(cable)).empty());
 }
 
 TEST(Decorations, InvalidOptionsAreNamed) {
