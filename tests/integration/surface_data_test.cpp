@@ -29,15 +29,21 @@ std::vector<std::string> real_sketches() {
   return files;
 }
 
+// The defaults but for a coarser proxy and fewer restarts, to keep the tests short. The proxy's
+// edge is 0.014 of the diagonal, twice the paper's: at 0.02 thin parts (the guitar's neck) are
+// under-resolved and its median distance rises to 1.25%; at 0.014 it is 0.56%.
+Params coarse_params() {
+  Params params;
+  params.proxy.edge = 0.014;
+  params.segment.restarts = 2;
+  return params;
+}
+
 class SurfaceData : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SurfaceData, MedianStrokeDistanceUnderOnePercent) {
   const Sketch sketch = read_sketch(GetParam());
-  Params params;
-  // 0.014 of the diagonal, twice the paper's edge: at 0.02 thin parts (the guitar's neck) are
-  // under-resolved and its median distance rises to 1.25%; at 0.014 it is 0.56%.
-  params.proxy.edge = 0.014;
-  params.segment.restarts = 2;
+  Params params = coarse_params();
   params.checks.refuse_score = 0.0;  // the stroke fit of every sketch, the flower's too
   const SurfaceResult r = Surfacer(params).run(sketch);
   EXPECT_LT(r.report.stroke_distance.median, 0.01) << GetParam();
@@ -73,10 +79,7 @@ TEST(DecorationData, ALampsCableAndPlugAreLeftOut) {
   std::size_t cable = 0;
   for (std::size_t s = 0; s < sketch.strokes.size(); ++s)
     if (sketch.strokes[s].length() > sketch.strokes[cable].length()) cable = s;
-  Params params;
-  params.proxy.edge = 0.014;
-  params.segment.restarts = 2;
-  const SurfaceResult r = Surfacer(params).run(sketch);
+  const SurfaceResult r = Surfacer(coarse_params()).run(sketch);
   std::size_t dangling = 0, carried = 0;
   for (const Decoration& d : r.report.decorations) {
     if (d.stroke == cable) {
@@ -102,10 +105,7 @@ TEST(DecorationData, ATorchsHangingRingIsLeftOutAndItsHandleKept) {
   // tilt/Dungeon_Torch: a ring on a string hangs from the handle; the string passes by the
   // handle's strokes for part of its length, the handle's own strokes run beside each other.
   const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "tilt" / "Dungeon_Torch.tilt");
-  Params params;
-  params.proxy.edge = 0.014;
-  params.segment.restarts = 2;
-  const SurfaceResult r = Surfacer(params).run(sketch);
+  const SurfaceResult r = Surfacer(coarse_params()).run(sketch);
   ASSERT_EQ(r.report.decorations.size(), 2u);
   EXPECT_EQ(r.report.decorations[0].kind, DecorationKind::Dangling);
   EXPECT_EQ(r.report.decorations[1].kind, DecorationKind::SmallGroup);
