@@ -165,7 +165,20 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   constraints.strokes = stroke_segments(sketch, false);
   if (open) constraints.attract = boundary_targets(seamed.mesh, sketch, on_plane, diagonal, options.trim);
   summary.attracted_vertices = constraints.attract.size();
+  // Regions whose model cannot follow their strokes stay at the proxy (smooth_fallback.h).
   const Eigen::MatrixX3d start_positions = vertex_matrix(seamed.mesh);
+  const std::vector<char> at_proxy = regions_at_proxy(seamed, models, *constraints.strokes, diagonal,
+                                                      options.smooth_fallback, options.energy,
+                                                      &summary.smooth_fallback);
+  std::vector<char> held(seamed.labels.size(), 0), attracted(seamed.labels.size(), 0);
+  for (const AttractTarget& target : constraints.attract) attracted[target.vertex] = 1;
+  for (auto v : seamed.mesh.vertices()) {
+    const auto& l = seamed.labels[v.idx()];
+    held[v.idx()] = std::any_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] != 0; });
+    if (!held[v.idx()] || attracted[v.idx()]) continue;  // an open border follows its strokes
+    constraints.held.push_back(v.idx());
+    constraints.attract.push_back({v.idx(), start_positions.row(v.idx()).transpose()});
+  }
   summary.optimization = optimize_mesh(seamed, models, constraints, options.energy, progress);
   summary.optimize_s = seconds_since(t);
 
@@ -175,10 +188,10 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   std::vector<std::uint8_t> half_sharp(seamed.labels.size());
   for (std::size_t v = 0; v < seamed.labels.size(); ++v) {
     half_labels[v] = seamed.labels[v].front();
-    half_sharp[v] = seamed.is_seam(static_cast<int>(v)) && w[v] < 1.0;
+    half_sharp[v] = seamed.is_seam(static_cast<int>(v)) && w[v] < 1.0 && !held[v];
   }
-  summary.smooth_fallback = keep_smooth_proxy(seamed.mesh, start_positions, half_sharp,
-                                              *constraints.strokes, diagonal, options.smooth_fallback);
+  keep_smooth_proxy(seamed.mesh, start_positions, half_sharp, *constraints.strokes, diagonal,
+                    options.smooth_fallback, &summary.smooth_fallback);
 
   // 4. Mirror (§5).
   t = Clock::now();

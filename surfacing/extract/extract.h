@@ -24,7 +24,7 @@ struct ExtractOptions {
   SeamOptions seams;         ///< seam insertion (§4.3)
   MeshEnergyOptions energy;  ///< E_mesh and its solver (Eq. 7-9, 13)
   TrimOptions trim;          ///< open surfaces (App. D)
-  SmoothFallbackOptions smooth_fallback;  ///< smooth parts keep the proxy where it fits better
+  SmoothFallbackOptions smooth_fallback;  ///< the proxy where the models cannot follow the strokes
   double plane_tolerance = 1e-6;  ///< boundary vertices this close to the mirror plane lie on it
                                   ///< (fraction of the diagonal)
   bool valid(std::string* why) const;
@@ -48,7 +48,7 @@ StrokeDistance stroke_distance(const TriMesh& mesh, const Sketch& sketch, double
 /// What extract() did.
 struct ExtractSummary {
   OptimizeSummary optimization;         ///< the solve of E_mesh
-  SmoothFallbackSummary smooth_fallback;  ///< smooth parts put back at the proxy
+  SmoothFallbackSummary smooth_fallback;  ///< regions and parts kept at the proxy
   std::size_t proxy_vertices = 0;
   std::size_t trimmed_faces = 0;        ///< proxy faces removed by the open-surface cut
   std::size_t seam_vertices = 0;        ///< inserted vertices with 2 labels

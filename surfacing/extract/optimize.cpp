@@ -48,37 +48,6 @@ bool MeshEnergyOptions::valid(std::string* why) const {
 
 namespace {
 
-/// Moves each vertex onto the intersection of its labels' surfaces by damped Gauss-Newton steps
-/// (least-norm dx with f_i + grad f_i . dx = 0), each step at most `max_step` long: a cheap start
-/// that leaves L-BFGS mostly the regularisation to do. Vertices marked `held` stay.
-void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models, int steps,
-                      double max_step, unsigned threads, const std::vector<char>& held) {
-  TriMesh& mesh = lm.mesh;
-  parallel_for(0, mesh.n_vertices(), threads, [&](std::size_t i) {
-    if (held[i]) return;
-    const TriMesh::VertexHandle v(static_cast<int>(i));
-    Eigen::Vector3d x = to_eigen(mesh.point(v));
-    const auto& labels = lm.labels[i];
-    const int k = static_cast<int>(labels.size());
-    for (int step = 0; step < steps; ++step) {
-      Eigen::MatrixXd J(k, 3);
-      Eigen::VectorXd f(k);
-      for (int a = 0; a < k; ++a) {
-        f[a] = models[labels[a]].value(x);
-        J.row(a) = models[labels[a]].gradient(x).transpose();
-      }
-      Eigen::MatrixXd JJt = J * J.transpose();
-      const double damping = 1e-6 * JJt.trace() + std::numeric_limits<double>::min();
-      JJt.diagonal().array() += damping;
-      Eigen::Vector3d dx = -J.transpose() * JJt.ldlt().solve(f);
-      if (!dx.allFinite()) break;
-      if (dx.norm() > max_step) dx *= max_step / dx.norm();
-      x += dx;
-    }
-    mesh.set_point(v, to_openmesh(x));
-  });
-}
-
 /// E_mesh in the variables y = x / s (Jacobi scaling: s = 1 / sqrt(Hessian diagonal)).
 class ScaledFunction final : public detail::LbfgsFunction {
  public:
@@ -112,6 +81,34 @@ class ScaledFunction final : public detail::LbfgsFunction {
 };
 
 }  // namespace
+
+void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models, int steps,
+                      double max_step, unsigned threads, const std::vector<char>& held) {
+  TriMesh& mesh = lm.mesh;
+  parallel_for(0, mesh.n_vertices(), threads, [&](std::size_t i) {
+    if (held[i]) return;
+    const TriMesh::VertexHandle v(static_cast<int>(i));
+    Eigen::Vector3d x = to_eigen(mesh.point(v));
+    const auto& labels = lm.labels[i];
+    const int k = static_cast<int>(labels.size());
+    for (int step = 0; step < steps; ++step) {
+      Eigen::MatrixXd J(k, 3);
+      Eigen::VectorXd f(k);
+      for (int a = 0; a < k; ++a) {
+        f[a] = models[labels[a]].value(x);
+        J.row(a) = models[labels[a]].gradient(x).transpose();
+      }
+      Eigen::MatrixXd JJt = J * J.transpose();
+      const double damping = 1e-6 * JJt.trace() + std::numeric_limits<double>::min();
+      JJt.diagonal().array() += damping;
+      Eigen::Vector3d dx = -J.transpose() * JJt.ldlt().solve(f);
+      if (!dx.allFinite()) break;
+      if (dx.norm() > max_step) dx *= max_step / dx.norm();
+      x += dx;
+    }
+    mesh.set_point(v, to_openmesh(x));
+  });
+}
 
 namespace detail {
 
@@ -171,6 +168,7 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
     tree.emplace(constraints.strokes->points, constraints.strokes->segments);
   const double reach = options.trust_distance * size;
   std::vector<char> held(static_cast<std::size_t>(n), 0);
+  for (int v : constraints.held) held[static_cast<std::size_t>(v)] = 1;
   const auto hold_far = [&](const std::vector<double>& at) {
     if (!tree) return false;
     const auto to_strokes = [&](const double* p) {
@@ -221,7 +219,7 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
     minimize(energy, function, team, x, size, summary);
     if (pass == 1 || !hold_far(x)) break;
   }
-  summary.held_vertices = trusted.held.size();
+  summary.held_vertices = trusted.held.size() - constraints.held.size();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (double value : x)

@@ -78,10 +78,18 @@ struct MeshConstraints {
   std::vector<AttractTarget> attract;  ///< E_attract targets (App. D)
   std::optional<Plane> plane;          ///< mirror plane, when the mesh is half of a symmetric one
   std::vector<int> plane_vertices;     ///< vertices that must stay on `plane` (its boundary there)
-  std::vector<int> held;               ///< vertices with no E_project term (each also needs an
-                                       ///< `attract` target, or only the Laplacian places it)
+  std::vector<int> held;               ///< vertices with no E_project term, not projected at the
+                                       ///< start either (each also needs an `attract` target, or
+                                       ///< only the Laplacian places it)
   std::optional<StrokeSegments> strokes;  ///< the strokes, for trust_distance (none: no limit)
 };
+
+/// Moves each vertex onto the intersection of its labels' surfaces by damped Gauss-Newton steps
+/// (least-norm dx with f_i + grad f_i . dx = 0), each step at most `max_step` long: the start of
+/// optimize_mesh(), which leaves L-BFGS mostly the regularisation to do. Vertices marked `held`
+/// (one entry per vertex) stay. The result does not depend on `threads`.
+void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models, int steps,
+                      double max_step, unsigned threads, const std::vector<char>& held);
 
 /// Energies of E_mesh's terms, each a plain sum of squares (mesh units squared) with its weight.
 struct MeshEnergyTerms {

@@ -1,5 +1,7 @@
 #include "surfacing/extract/smooth_fallback.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "surfacing/closest_face.h"
@@ -11,18 +13,99 @@ bool SmoothFallbackOptions::valid(std::string* why) const {
     if (why) *why = "extract smooth_fallback reach must be in (0, 1)";
     return false;
   }
+  if (!(agree > 0.0)) {
+    if (why) *why = "extract smooth_fallback agree must be > 0";
+    return false;
+  }
   return true;
 }
 
-SmoothFallbackSummary keep_smooth_proxy(TriMesh& mesh, const Eigen::MatrixX3d& start,
-                                        const std::vector<std::uint8_t>& sharp,
-                                        const StrokeSegments& strokes, double diagonal,
-                                        const SmoothFallbackOptions& options) {
-  SmoothFallbackSummary summary;
+namespace {
+
+/// The region of face f: the label its three vertices share (seams are inserted so that every
+/// face lies in one region); the first vertex's first label when none is shared.
+int face_region(const LabeledMesh& mesh, const Eigen::MatrixX3i& F, int f) {
+  const auto& a = mesh.labels[F(f, 0)];
+  for (int l : a) {
+    const auto has = [&](int v) {
+      const auto& b = mesh.labels[v];
+      return std::find(b.begin(), b.end(), l) != b.end();
+    };
+    if (has(F(f, 1)) && has(F(f, 2))) return l;
+  }
+  return a.front();
+}
+
+}  // namespace
+
+std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
+                                   const StrokeSegments& strokes, double diagonal,
+                                   const SmoothFallbackOptions& options, const MeshEnergyOptions& energy,
+                                   SmoothFallbackSummary* summary) {
+  std::vector<char> kept(models.size(), 0);
+  SmoothFallbackSummary local;
+  SmoothFallbackSummary& out = summary ? *summary : local;
+  out.regions = out.kept = out.held = 0;
+  const Eigen::MatrixX3d V = vertex_matrix(mesh.mesh);
+  const Eigen::MatrixX3i F = face_matrix(mesh.mesh);
+  if (!options.enabled || F.rows() == 0 || strokes.points.rows() == 0) return kept;
+
+  const ClosestFaceTree tree(V, F);
+  const double reach = options.reach * diagonal;
+  std::vector<double> to_proxy(models.size(), 0.0), to_model(models.size(), 0.0);
+  std::vector<std::size_t> count(models.size(), 0);
+  for (Eigen::Index i = 0; i < strokes.points.rows(); ++i) {
+    const Eigen::Vector3d p = strokes.points.row(i).transpose();
+    Eigen::Vector3d q;
+    const int f = tree.closest_face(p, &q);
+    const double d = (q - p).norm();
+    if (f < 0 || d > reach) continue;
+    const int r = face_region(mesh, F, f);
+    const double m = models[static_cast<std::size_t>(r)].distance(p);
+    to_proxy[r] += d * d;
+    to_model[r] += std::isfinite(m) ? std::min(m * m, reach * reach) : reach * reach;
+    ++count[r];
+  }
+  std::vector<char> closer(models.size(), 0);  // the proxy closer to the region's strokes
+  for (std::size_t r = 0; r < models.size(); ++r)
+    closer[r] = count[r] >= options.min_points && to_proxy[r] < to_model[r] && models[r].degree > 1;
+  out.regions = static_cast<std::size_t>(
+      std::count_if(count.begin(), count.end(), [&](std::size_t c) { return c >= options.min_points; }));
+  if (std::none_of(closer.begin(), closer.end(), [](char c) { return c != 0; })) return kept;
+
+  // How far the start of the solve (optimize.h) would move each region's own vertices.
+  LabeledMesh projected = mesh;
+  project_vertices(projected, models, energy.projection_steps, energy.max_projection_step * diagonal,
+                   energy.threads, std::vector<char>(mesh.labels.size(), 0));
+  std::vector<std::vector<double>> moves(models.size());
+  for (auto v : mesh.mesh.vertices())
+    if (mesh.labels[v.idx()].size() == 1)
+      moves[mesh.labels[v.idx()].front()].push_back(
+          (to_eigen(mesh.mesh.point(v)) - to_eigen(projected.mesh.point(v))).norm());
+  for (std::size_t r = 0; r < models.size(); ++r) {
+    if (!closer[r]) continue;
+    auto& m = moves[r];
+    const auto p95 = m.begin() + static_cast<std::ptrdiff_t>(m.size() * 95 / 100);
+    if (p95 != m.end()) std::nth_element(m.begin(), p95, m.end());
+    if (p95 != m.end() && *p95 > options.agree * diagonal) continue;  // the model reshapes it
+    kept[r] = 1;
+    ++out.kept;
+  }
+  for (const auto& labels : mesh.labels)
+    out.held += std::any_of(labels.begin(), labels.end(), [&](int l) { return kept[l] != 0; });
+  return kept;
+}
+
+void keep_smooth_proxy(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& sharp,
+                       const StrokeSegments& strokes, double diagonal, const SmoothFallbackOptions& options,
+                       SmoothFallbackSummary* out) {
+  SmoothFallbackSummary local;
+  SmoothFallbackSummary& summary = out ? *out : local;
+  summary.parts = summary.reverted = summary.vertices = 0;
   const Eigen::MatrixX3d now = vertex_matrix(mesh);
   const Eigen::MatrixX3i F = face_matrix(mesh);
   if (!options.enabled || F.rows() == 0 || now.rows() != start.rows() || strokes.points.rows() == 0)
-    return summary;
+    return;
 
   // Connected parts (through faces) and whether each has a crease vertex.
   const std::vector<int> part = vertex_components(F, now.rows());
@@ -63,7 +146,6 @@ SmoothFallbackSummary keep_smooth_proxy(TriMesh& mesh, const Eigen::MatrixX3d& s
       ++summary.vertices;
     }
   if (summary.vertices > 0) mesh.update_normals();
-  return summary;
 }
 
 }  // namespace sketchsurf

@@ -193,6 +193,36 @@ TEST(OptimizeMesh, KeepsPlaneVerticesOnThePlaneAndAttractsTargets) {
   EXPECT_LT(s.final.total(), 1e-10);
 }
 
+TEST(OptimizeMesh, HeldVerticesStayAtTheirTargetsAndTheRestIsProjected) {
+  // A sphere of radius 1.05 over the model of radius 1: the half x > 0 is held at the start
+  // (what a region kept at the proxy gets), the rest is projected.
+  ImplicitModel sphere;
+  sphere.degree = 2;
+  sphere.coefficients = Eigen::VectorXd::Zero(10);
+  sphere.coefficients[0] = -1.0;
+  sphere.coefficients[4] = sphere.coefficients[7] = sphere.coefficients[9] = 1.0;
+  LabeledMesh m{testing::icosphere(4, 1.05), {}, {}};
+  m.labels.assign(m.mesh.n_vertices(), {0});
+  m.source_vertex.assign(m.mesh.n_vertices(), -1);
+  MeshConstraints c;
+  for (auto v : m.mesh.vertices())
+    if (m.mesh.point(v)[0] > 0.0) {
+      c.held.push_back(v.idx());
+      c.attract.push_back({v.idx(), to_eigen(m.mesh.point(v))});
+    }
+  const OptimizeSummary s = optimize_mesh(m, {sphere}, c, {});
+  EXPECT_TRUE(s.usable) << s.termination;
+  EXPECT_EQ(s.held_vertices, 0u) << "held by the caller, not by trust_distance";
+  for (auto v : m.mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(m.mesh.point(v));
+    if (p.x() > 0.5) {
+      EXPECT_NEAR(p.norm(), 1.05, 0.01) << "held vertex " << v.idx();
+    } else if (p.x() < -0.5) {
+      EXPECT_NEAR(p.norm(), 1.0, 0.01) << "projected vertex " << v.idx();
+    }
+  }
+}
+
 TEST(OptimizeMesh, SameResultWhateverTheThreadCount) {
   const Eigen::Vector3d half(0.5, 0.5, 0.5);
   const TriMesh proxy = testing::rounded_box_mesh(3, half, 0.1);

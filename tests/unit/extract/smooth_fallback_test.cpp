@@ -10,17 +10,153 @@ namespace {
 
 using namespace testing;
 
-// Two unit spheres, 4 apart along x, each drawn with its meridians and equator: the strokes lie
-// exactly on the first mesh's spheres ("the proxy"); the second is the same mesh inflated by 2%
-// ("an optimised surface that left the strokes").
+// Two unit spheres, 4 apart along x, each drawn with its meridians and equator, each one region
+// of the proxy (a fine icosphere through the strokes). Sketch diagonal about 6.
 struct Scene {
+  LabeledMesh proxy;
+  StrokeSegments strokes;
+};
+
+Scene two_spheres() {
+  const Eigen::Vector3d offset(4.0, 0.0, 0.0);
+  TriMesh mesh = icosphere(4, 1.0);
+  const int half = static_cast<int>(mesh.n_vertices());
+  append_mesh(mesh, icosphere(4, 1.0, offset));
+  Scene s;
+  s.proxy.labels.assign(mesh.n_vertices(), {0});
+  for (std::size_t v = static_cast<std::size_t>(half); v < mesh.n_vertices(); ++v) s.proxy.labels[v] = {1};
+  s.proxy.source_vertex.assign(mesh.n_vertices(), -1);
+  s.proxy.mesh = std::move(mesh);
+  Sketch sketch = sphere_sketch(1.0, 4), second = sphere_sketch(1.0, 4);
+  transform(second, 1.0, offset);
+  sketch.strokes.insert(sketch.strokes.end(), second.strokes.begin(), second.strokes.end());
+  s.strokes = stroke_segments(sketch, false);
+  return s;
+}
+
+/// The sphere |x - center| = radius as a quadric.
+ImplicitModel sphere_model(const Eigen::Vector3d& center, double radius) {
+  ImplicitModel m;
+  m.degree = 2;
+  m.center = center;
+  m.coefficients = Eigen::VectorXd::Zero(10);
+  m.coefficients[0] = -radius * radius;
+  m.coefficients[4] = m.coefficients[7] = m.coefficients[9] = 1.0;
+  return m;
+}
+
+TEST(SmoothFallback, ARegionWhoseModelMissesItsStrokesStaysAtTheProxy) {
+  const Scene s = two_spheres();
+  // Region 0's model is the drawn sphere; region 1's is 8% too large: it misses every stroke
+  // point by 0.08, the proxy by its chords' sagitta only.
+  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
+                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.08)};
+  SmoothFallbackSummary summary;
+  const std::vector<char> kept = regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {}, &summary);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0], 0) << "an exact model is projected onto";
+  EXPECT_EQ(kept[1], 1) << "a model farther from the strokes than the proxy is not";
+  EXPECT_EQ(summary.regions, 2u);
+  EXPECT_EQ(summary.kept, 1u);
+  EXPECT_EQ(summary.held, s.proxy.mesh.n_vertices() / 2);
+}
+
+TEST(SmoothFallback, ModelsCloserThanTheProxyAreAllProjectedOnto) {
+  Scene s = two_spheres();
+  // The proxy 5% too large: both exact models are closer to the strokes.
+  for (auto v : s.proxy.mesh.vertices()) {
+    const Eigen::Vector3d c(v.idx() < static_cast<int>(s.proxy.mesh.n_vertices() / 2) ? 0.0 : 4.0, 0.0, 0.0);
+    s.proxy.mesh.set_point(v, to_openmesh(c + 1.05 * (to_eigen(s.proxy.mesh.point(v)) - c)));
+  }
+  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
+                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.0)};
+  SmoothFallbackSummary summary;
+  const std::vector<char> kept = regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {}, &summary);
+  EXPECT_EQ(kept, std::vector<char>(2, 0));
+  EXPECT_EQ(summary.regions, 2u);
+  EXPECT_EQ(summary.held, 0u);
+}
+
+TEST(SmoothFallback, AModelThatReshapesTheRegionIsProjectedOntoEvenWhenFartherFromItsStrokes) {
+  const Scene s = two_spheres();
+  // Radius 1.2: the projection would move the second sphere by 0.2, 3.3% of the diagonal (more
+  // than `agree`): the model corrects the proxy's shape there, it is not a detail it misses.
+  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
+                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.2)};
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {}), std::vector<char>(2, 0));
+  SmoothFallbackOptions loose;
+  loose.agree = 0.05;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, loose, {}), std::vector<char>({0, 1}));
+}
+
+TEST(SmoothFallback, APlaneIsAlwaysProjectedOnto) {
+  // A unit square waved by 1% in z, drawn with lines along y on the wave: the proxy passes through
+  // the strokes, the plane z = 0 misses them by up to 0.01 (less than `agree` moves it). As a
+  // plane the model is projected onto; the same surface as a degree-2 model is not.
+  const int n = 41;
+  Eigen::MatrixX3d V(n * n, 3);
+  const auto wave = [](double x) { return 0.01 * std::sin(2.0 * M_PI * x); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = i / double(n - 1), y = j / double(n - 1);
+      V.row(i * n + j) << x, y, wave(x);
+    }
+  Eigen::MatrixX3i F(2 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      const int a = i * n + j, b = a + n;
+      F.row(f++) << a, b, a + 1;
+      F.row(f++) << a + 1, b, b + 1;
+    }
+  LabeledMesh proxy{mesh_from_matrices(V, F), std::vector<std::vector<int>>(n * n, {0}),
+                    std::vector<int>(n * n, -1)};
+  Sketch sketch;
+  for (int k = 0; k <= 8; ++k) {
+    const double x = 0.05 + 0.1125 * k;
+    sketch.strokes.push_back(sample_curve([&](double t) { return Eigen::Vector3d(x, t, wave(x)); }, 0.0, 1.0, 0.02));
+  }
+  const StrokeSegments strokes = stroke_segments(sketch, false);
+  ImplicitModel plane;
+  plane.degree = 1;
+  plane.coefficients = Eigen::Vector4d(0.0, 0.0, 0.0, 1.0);  // z
+  EXPECT_EQ(regions_at_proxy(proxy, {plane}, strokes, std::sqrt(2.0), {}, {}), std::vector<char>{0});
+  ImplicitModel flat_quadric;
+  flat_quadric.degree = 2;
+  flat_quadric.coefficients = Eigen::VectorXd::Zero(10);
+  flat_quadric.coefficients[3] = 1.0;  // z
+  EXPECT_EQ(regions_at_proxy(proxy, {flat_quadric}, strokes, std::sqrt(2.0), {}, {}), std::vector<char>{1});
+}
+
+TEST(SmoothFallback, OffFarOrFewStrokesKeepNothing) {
+  const Scene s = two_spheres();
+  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.1),
+                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.1)};
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {}), std::vector<char>(2, 1));
+  SmoothFallbackOptions off;
+  off.enabled = false;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, off, {}), std::vector<char>(2, 0));
+  // Strokes 10 diagonals away belong to no region.
+  StrokeSegments far = s.strokes;
+  far.points.col(1).array() += 60.0;
+  SmoothFallbackSummary summary;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, far, 6.0, {}, {}, &summary), std::vector<char>(2, 0));
+  EXPECT_EQ(summary.regions, 0u);
+  SmoothFallbackOptions many;
+  many.min_points = static_cast<std::size_t>(s.strokes.points.rows());
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, many, {}), std::vector<char>(2, 0));
+}
+
+// The same two spheres as meshes: the strokes lie exactly on the first mesh's spheres ("the proxy"); the second is the same mesh inflated by 2%
+// ("an optimised surface that left the strokes").
+struct Inflated {
   TriMesh proxy, inflated;
   StrokeSegments strokes;
   std::vector<std::uint8_t> sharp;
 };
 
-Scene two_spheres() {
-  Scene s;
+Inflated inflated_spheres() {
+  Inflated s;
   const Eigen::Vector3d offset(4.0, 0.0, 0.0);
   s.proxy = icosphere(4, 1.0);
   append_mesh(s.proxy, icosphere(4, 1.0, offset));
@@ -42,13 +178,14 @@ double max_offset(const TriMesh& mesh, const Eigen::MatrixX3d& reference, int fi
 }
 
 TEST(SmoothFallback, ASmoothPartThatLeftItsStrokesGoesBackToTheProxy) {
-  Scene s = two_spheres();
+  Inflated s = inflated_spheres();
   const Eigen::MatrixX3d start = vertex_matrix(s.proxy);
   const Eigen::MatrixX3d inflated = vertex_matrix(s.inflated);
   const int half = static_cast<int>(s.proxy.n_vertices() / 2);
   s.sharp[static_cast<std::size_t>(half + 3)] = 1;  // the second sphere has a crease vertex
   TriMesh mesh = s.inflated;
-  const SmoothFallbackSummary summary = keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, {});
+  SmoothFallbackSummary summary;
+  keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, {}, &summary);
   EXPECT_EQ(summary.parts, 1u);
   EXPECT_EQ(summary.reverted, 1u);
   EXPECT_EQ(summary.vertices, static_cast<std::size_t>(half));
@@ -57,28 +194,32 @@ TEST(SmoothFallback, ASmoothPartThatLeftItsStrokesGoesBackToTheProxy) {
 }
 
 TEST(SmoothFallback, APartCloserToItsStrokesThanTheProxyKeepsItsPositions) {
-  Scene s = two_spheres();
+  Inflated s = inflated_spheres();
   // Now the proxy is the inflated mesh and the optimised surface the exact one.
   const Eigen::MatrixX3d start = vertex_matrix(s.inflated);
   TriMesh mesh = s.proxy;
   const Eigen::MatrixX3d exact = vertex_matrix(mesh);
-  const SmoothFallbackSummary summary = keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, {});
+  SmoothFallbackSummary summary;
+  keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, {}, &summary);
   EXPECT_EQ(summary.parts, 2u);
   EXPECT_EQ(summary.reverted, 0u);
   EXPECT_EQ(max_offset(mesh, exact, 0, static_cast<int>(mesh.n_vertices())), 0.0);
 }
 
 TEST(SmoothFallback, OffOrWithoutStrokesNearbyNothingMoves) {
-  Scene s = two_spheres();
+  Inflated s = inflated_spheres();
   const Eigen::MatrixX3d start = vertex_matrix(s.proxy);
   SmoothFallbackOptions off;
   off.enabled = false;
   TriMesh mesh = s.inflated;
-  EXPECT_EQ(keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, off).reverted, 0u);
+  SmoothFallbackSummary summary;
+  keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, off, &summary);
+  EXPECT_EQ(summary.reverted, 0u);
   // Strokes 10 diagonals away belong to no part.
   StrokeSegments far = s.strokes;
   far.points.col(1).array() += 60.0;
-  EXPECT_EQ(keep_smooth_proxy(mesh, start, s.sharp, far, 6.0, {}).reverted, 0u);
+  keep_smooth_proxy(mesh, start, s.sharp, far, 6.0, {}, &summary);
+  EXPECT_EQ(summary.reverted, 0u);
   EXPECT_EQ(max_offset(mesh, vertex_matrix(s.inflated), 0, static_cast<int>(mesh.n_vertices())), 0.0);
 }
 
