@@ -57,9 +57,10 @@ struct SmoothFallbackSummary {
 /// options.reach * diagonal of `mesh` (the seamed proxy, before optimisation) belong to the region
 /// of their closest face; a region stays when the root-mean-square distance of its points to the
 /// proxy is below their root-mean-square first-order distance to its model (each capped at the
-/// reach), its model is not a plane (degree 1), and the projection that starts the solve (project_vertices() with `energy`'s steps)
-/// moves at most 5% of its own vertices farther than options.agree * diagonal. Fills
-/// summary->regions, kept and held. Deterministic; `strokes` are those the surface is fitted to.
+/// reach), its model is not a plane (degree 1), and the projection that starts the solve
+/// (project_vertices() with `energy`'s steps) moves at most 5% of its own vertices farther than
+/// options.agree * diagonal. Fills summary->regions, kept and held. Deterministic; `strokes` are
+/// those the surface is fitted to.
 std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
                                    const StrokeSegments& strokes, double diagonal,
                                    const SmoothFallbackOptions& options, const MeshEnergyOptions& energy,
