@@ -262,6 +262,7 @@ void Studio::finish() {
   // done() sees the job finished as soon as its thread ends; the frame loop takes the result on
   // its next tick, which a finishing studio does not run.
   if (session_->poll_surface()) set_status("surface: " + session_->surface_status().message);
+  log_progress();  // a job that ended after the last frame's log is reported too
   if (!options_.save_surface.empty()) {
     session_->save_surface(options_.save_surface);
     log_.info("wrote the surface to " + options_.save_surface.string());
