@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include <Eigen/Geometry>
+
 #include "surfacing/error.h"
 
 namespace sketchsurf {
@@ -36,6 +38,20 @@ Eigen::MatrixX3i face_matrix(const TriMesh& mesh) {
     for (auto v : f.vertices()) F(f.idx(), c++) = v.idx();
   }
   return F;
+}
+
+Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  Eigen::MatrixX3d N = Eigen::MatrixX3d::Zero(V.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const Eigen::RowVector3d n = (b - a).cross(c - a).transpose();  // length: twice the area
+    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n;
+  }
+  for (Eigen::Index v = 0; v < N.rows(); ++v) {
+    const double length = N.row(v).norm();
+    if (length > 0.0) N.row(v) /= length;
+  }
+  return N;
 }
 
 TriMesh mesh_from_matrices(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {

@@ -3,7 +3,8 @@
 # what to look at before and after a change to the surfacing.
 #   tools/review_data.sh [DATA_DIR (../shared/data)] [OUT_DIR (review)] [-- extra surface args]
 # OUT_DIR/results/NAME.ply (+ NAME.report.json, NAME.log), OUT_DIR/index.html, OUT_DIR/NAME.png,
-# OUT_DIR/summary.tsv (name, exit code, seconds, regions, genus, beyond, outside_box, warnings).
+# OUT_DIR/summary.tsv (name, exit code, seconds, regions, genus, beyond, outside_box, crossing
+# triangle pairs, warnings).
 set -uo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -16,7 +17,7 @@ shift $(( $# > 2 ? 2 : $# ))
 [ -d "$data" ] || { echo "review_data.sh: no data folder '$data'" >&2; exit 2; }
 
 mkdir -p "$out/results" "$out/sketches"
-printf "name\texit\tseconds\tregions\tgenus\tbeyond\toutside_box\twarnings\n" > "$out/summary.tsv"
+printf "name\texit\tseconds\tregions\tgenus\tbeyond\toutside_box\tcrossing\twarnings\n" > "$out/summary.tsv"
 find "$data" -type f \( -name '*.curves' -o -name '*.tilt' -o -path '*/vns/*.obj' -o -name '*.json' \) \
     -not -name '*.report.json' | sort | while read -r sketch; do
   ext="${sketch##*.}"
@@ -34,10 +35,11 @@ find "$data" -type f \( -name '*.curves' -o -name '*.tilt' -o -path '*/vns/*.obj
 import json, sys
 r = json.load(open(sys.argv[1])); c = r["checks"]
 print("\t".join([sys.argv[2], sys.argv[3], "%.1f" % float(sys.argv[4]), str(r["regions"]), str(c["genus"]),
-                 "%.3f" % c["beyond"], "%.3f" % c["outside_box"], " | ".join(c["warnings"])]))
+                 "%.3f" % c["beyond"], "%.3f" % c["outside_box"], str(c["self_intersections"]),
+                 " | ".join(c["warnings"])]))
 PY
   else
-    printf "%s\t%s\t%.1f\t\t\t\t\t%s\n" "$id" "$rc" "$seconds" "$(tail -1 "$out/results/$id.log")" >> "$out/summary.tsv"
+    printf "%s\t%s\t%.1f\t\t\t\t\t\t%s\n" "$id" "$rc" "$seconds" "$(tail -1 "$out/results/$id.log")" >> "$out/summary.tsv"
   fi
   echo "review_data.sh: $id exit $rc ($seconds s)" >&2
 done

@@ -248,8 +248,10 @@ bool MeshEnergyFunction::evaluate(const double* x, double* cost, double* gradien
   // Projection: each term alone (in parallel), accumulated in a fixed order.
   team_.for_each(0, energy_.project.size(), [&](std::size_t i) {
     const ProjectionTerm& t = energy_.project[i];
-    project_values_[i] = energy_.derivatives[t.model].taubin(x + 3 * t.vertex, std::sqrt(t.weight), t.floor,
-                                                             project_gradients_[i].data());
+    const double s = std::sqrt(t.weight);
+    project_values_[i] = energy_.derivatives[t.model].taubin(x + 3 * t.vertex, s, t.floor,
+                                                             project_gradients_[i].data()) +
+                         s * t.offset;
   });
   double total = 0.0;
   for (std::size_t i = 0; i < energy_.project.size(); ++i) total += 0.5 * project_values_[i] * project_values_[i];
@@ -312,7 +314,7 @@ MeshEnergyTerms MeshEnergyFunction::terms(const double* x) const {
   const Eigen::Map<const Eigen::VectorXd> X(x, 3 * n_);
   team_.for_each(0, energy_.project.size(), [&](std::size_t i) {
     const ProjectionTerm& t = energy_.project[i];
-    const ProjectionResidual r{&(*energy_.models)[t.model], std::sqrt(t.weight), t.floor};
+    const ProjectionResidual r{&(*energy_.models)[t.model], std::sqrt(t.weight), t.floor, t.offset};
     r(x + 3 * t.vertex, &project_values_[i]);
   });
   for (double value : project_values_) e.project += value * value;
@@ -354,9 +356,11 @@ MeshEnergy build_energy(const LabeledMesh& lm, const std::vector<ImplicitModel>&
   }
   std::vector<bool> held(static_cast<std::size_t>(n), false);
   for (int v : constraints.held) held[static_cast<std::size_t>(v)] = true;
+  const std::vector<double> offset = inside_offsets(constraints, n);
   for (int v = 0; v < n; ++v)
     if (!held[static_cast<std::size_t>(v)])
-      for (int l : lm.labels[v]) energy.project.push_back({v, l, 1.0 / lm.labels[v].size(), floor[l]});
+      for (int l : lm.labels[v])
+        energy.project.push_back({v, l, 1.0 / lm.labels[v].size(), floor[l], offset[static_cast<std::size_t>(v)]});
 
   // E_regularize (Eq. 9).
   const std::vector<double> w = regularization_weights(lm, models, options);

@@ -15,13 +15,16 @@
 
 namespace sketchsurf::detail {
 
-/// Eq. 8 residual of one vertex and one of its labels: sqrt(weight) f(x) / |grad f(x)|, the
-/// signed Taubin distance. Signed (not |f|) so that the residual is smooth across the surface;
-/// `gradient_floor` (f units per length) keeps it finite where grad f vanishes.
+/// Eq. 8 residual of one vertex and one of its labels: sqrt(weight) (f(x) / |grad f(x)| + offset),
+/// the signed Taubin distance to the level set `offset` inside the zero set (0: the zero set
+/// itself; > 0 for a thin part's far side, back_sides.h). Signed (not |f|) so that the residual
+/// is smooth across the surface; `gradient_floor` (f units per length) keeps it finite where
+/// grad f vanishes.
 struct ProjectionResidual {
   const ImplicitModel* model = nullptr;
   double sqrt_weight = 1.0;
   double gradient_floor = 0.0;
+  double offset = 0.0;
 
   template <typename T>
   bool operator()(const T* x, T* residual) const {
@@ -30,7 +33,7 @@ struct ProjectionResidual {
     model->evaluate_gradient(x, g);
     using std::sqrt;
     const T norm = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2] + T(gradient_floor * gradient_floor));
-    residual[0] = T(sqrt_weight) * f / norm;
+    residual[0] = T(sqrt_weight) * (f / norm + T(offset));
     return true;
   }
 };
@@ -64,12 +67,14 @@ class ModelDerivatives {
 
 using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
-/// One Eq. 8 term: vertex, model, 1 / |labels|, gradient floor.
+/// One Eq. 8 term: vertex, model, 1 / |labels|, gradient floor, and the offset of its target
+/// level set inside the zero set (ProjectionResidual).
 struct ProjectionTerm {
   int vertex = 0;
   int model = 0;
   double weight = 1.0;
   double floor = 0.0;
+  double offset = 0.0;
 };
 
 /// One Laplacian term of Eq. 9: the centre vertex first, then its neighbours.

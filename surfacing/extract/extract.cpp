@@ -11,7 +11,8 @@
 namespace sketchsurf {
 
 bool ExtractOptions::valid(std::string* why) const {
-  if (!seams.valid(why) || !energy.valid(why) || !trim.valid(why) || !smooth_fallback.valid(why))
+  if (!seams.valid(why) || !energy.valid(why) || !trim.valid(why) || !smooth_fallback.valid(why) ||
+      !back_sides.valid(why))
     return false;
   if (!(plane_tolerance > 0.0)) {
     if (why) *why = "extract.plane_tolerance must be > 0";
@@ -179,6 +180,12 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
     constraints.held.push_back(v.idx());
     constraints.attract.push_back({v.idx(), start_positions.row(v.idx()).transpose()});
   }
+  // Thin parts' far sides, found on the proxy, end just inside their region's surface, apart
+  // from the near side (back_sides.h); held vertices stay where they are held.
+  constraints.inside = find_back_sides(seamed, models, options.back_sides);
+  std::erase_if(constraints.inside, [&](int v) { return held[v] != 0; });
+  constraints.inside_gap = options.back_sides.gap * diagonal;
+  summary.back_side_vertices = constraints.inside.size();
   summary.optimization = optimize_mesh(seamed, models, constraints, options.energy, progress);
   summary.optimize_s = seconds_since(t);
 

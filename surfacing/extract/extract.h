@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "surfacing/extract/back_sides.h"
 #include "surfacing/extract/mirror.h"
 #include "surfacing/extract/optimize.h"
 #include "surfacing/extract/seams.h"
@@ -25,6 +26,7 @@ struct ExtractOptions {
   MeshEnergyOptions energy;  ///< E_mesh and its solver (Eq. 7-9, 13)
   TrimOptions trim;          ///< open surfaces (App. D)
   SmoothFallbackOptions smooth_fallback;  ///< the proxy where the models cannot follow the strokes
+  BackSideOptions back_sides;  ///< thin parts' two sides kept apart (back_sides.h)
   double plane_tolerance = 1e-6;  ///< boundary vertices this close to the mirror plane lie on it
                                   ///< (fraction of the diagonal)
   bool valid(std::string* why) const;
@@ -55,6 +57,8 @@ struct ExtractSummary {
   std::size_t corner_vertices = 0;      ///< inserted vertices with 3 labels
   std::size_t sharp_vertices = 0;       ///< vertices flagged sharp in the output
   std::size_t attracted_vertices = 0;   ///< open-boundary vertices with an Eq. 13 target
+  std::size_t back_side_vertices = 0;   ///< thin parts' far sides moved just inside their
+                                        ///< region's surface (back_sides.h)
   std::size_t output_vertices = 0;
   std::size_t output_faces = 0;
   bool open = false;                    ///< trimmed along boundary strokes

@@ -189,16 +189,17 @@ RowMajorMatrix normal_matrix(const Eigen::SparseMatrix<double>& L2, const Eigen:
 
 namespace {
 
-/// The closest point of Z(f) to x, approximately: Newton steps along the gradient
-/// (x -= f grad f / |grad f|^2), each at most `max_step` long.
-Eigen::Vector3d project_onto(const ModelDerivatives& model, Eigen::Vector3d x, int steps,
+/// The closest point to x of the level set `offset` inside Z(f) (Taubin distance f / |grad f| =
+/// -offset), approximately: Newton steps along the gradient
+/// (x -= (f + offset |grad f|) grad f / |grad f|^2), each at most `max_step` long.
+Eigen::Vector3d project_onto(const ModelDerivatives& model, Eigen::Vector3d x, double offset, int steps,
                              double max_step) {
   for (int step = 0; step < steps; ++step) {
     Eigen::Vector3d g;
     const double f = model.value_and_gradient(x.data(), g.data());
     const double gg = g.squaredNorm();
     if (!(gg > 0.0)) break;
-    Eigen::Vector3d dx = -f / gg * g;
+    Eigen::Vector3d dx = -(f + offset * std::sqrt(gg)) / gg * g;
     if (!dx.allFinite()) break;
     const double length = dx.norm();
     if (length > max_step) dx *= max_step / length;
@@ -321,7 +322,7 @@ int local_global(const MeshEnergy& energy, int n, int iterations, int projection
   for (int it = 1; it <= iterations; ++it) {
     team.for_each(0, energy.project.size(), [&](std::size_t i) {
       const ProjectionTerm& t = energy.project[i];
-      points[i] = project_onto(energy.derivatives[t.model], Eigen::Map<const Eigen::Vector3d>(&x[3 * t.vertex]),
+      points[i] = project_onto(energy.derivatives[t.model], Eigen::Map<const Eigen::Vector3d>(&x[3 * t.vertex]), t.offset,
                                projection_steps, max_step);
     });
     pulled.setZero();

@@ -82,8 +82,15 @@ class ScaledFunction final : public detail::LbfgsFunction {
 
 }  // namespace
 
+std::vector<double> inside_offsets(const MeshConstraints& constraints, int n) {
+  std::vector<double> offset(static_cast<std::size_t>(n), 0.0);
+  for (int v : constraints.inside) offset[static_cast<std::size_t>(v)] = constraints.inside_gap;
+  return offset;
+}
+
 void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models, int steps,
-                      double max_step, unsigned threads, const std::vector<char>& held) {
+                      double max_step, unsigned threads, const std::vector<char>& held,
+                      const std::vector<double>& inside) {
   TriMesh& mesh = lm.mesh;
   parallel_for(0, mesh.n_vertices(), threads, [&](std::size_t i) {
     if (held[i]) return;
@@ -98,6 +105,7 @@ void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models,
         f[a] = models[labels[a]].value(x);
         J.row(a) = models[labels[a]].gradient(x).transpose();
       }
+      if (k == 1 && !inside.empty()) f[0] += inside[i] * J.row(0).norm();
       Eigen::MatrixXd JJt = J * J.transpose();
       const double damping = 1e-6 * JJt.trace() + std::numeric_limits<double>::min();
       JJt.diagonal().array() += damping;
@@ -132,6 +140,9 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   for (const auto& t : constraints.attract) check_vertex(t.vertex);
   for (int v : constraints.plane_vertices) check_vertex(v);
   for (int v : constraints.held) check_vertex(v);
+  for (int v : constraints.inside) check_vertex(v);
+  if (!(constraints.inside_gap >= 0.0 && std::isfinite(constraints.inside_gap)))
+    throw Error::usage("optimize_mesh: inside_gap must be finite and >= 0");
   if (!constraints.plane_vertices.empty() && !constraints.plane)
     throw Error::usage("optimize_mesh: plane vertices without a plane");
 
@@ -198,7 +209,8 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
     for (auto v : mesh.vertices())
       mesh.set_point(v, TriMesh::Point(proxy[3 * v.idx()], proxy[3 * v.idx() + 1], proxy[3 * v.idx() + 2]));
     if (options.projection_steps > 0) {
-      project_vertices(lm, models, options.projection_steps, options.max_projection_step * size, threads, held);
+      project_vertices(lm, models, options.projection_steps, options.max_projection_step * size, threads, held,
+                       inside_offsets(constraints, n));
       load();
       if (pass == 0 && hold_far(x)) {
         for (int v : trusted.held) mesh.set_point(TriMesh::VertexHandle(v), TriMesh::Point(&proxy[3 * v]));

@@ -81,15 +81,25 @@ struct MeshConstraints {
   std::vector<int> held;               ///< vertices with no E_project term, not projected at the
                                        ///< start either (each also needs an `attract` target, or
                                        ///< only the Laplacian places it)
+  std::vector<int> inside;             ///< single-label vertices projected onto the level set
+                                       ///< `inside_gap` inside their model's zero set instead of
+                                       ///< the zero set: a thin part's far side (back_sides.h)
+  double inside_gap = 0.0;             ///< mesh units
   std::optional<StrokeSegments> strokes;  ///< the strokes, for trust_distance (none: no limit)
 };
 
 /// Moves each vertex onto the intersection of its labels' surfaces by damped Gauss-Newton steps
 /// (least-norm dx with f_i + grad f_i . dx = 0), each step at most `max_step` long: the start of
 /// optimize_mesh(), which leaves L-BFGS mostly the regularisation to do. Vertices marked `held`
-/// (one entry per vertex) stay. The result does not depend on `threads`.
+/// (one entry per vertex) stay. `inside` (one entry per vertex, or empty: all 0): a single-label
+/// vertex's target is the level set that far inside its model's zero set (Taubin distance).
+/// The result does not depend on `threads`.
 void project_vertices(LabeledMesh& lm, const std::vector<ImplicitModel>& models, int steps,
-                      double max_step, unsigned threads, const std::vector<char>& held);
+                      double max_step, unsigned threads, const std::vector<char>& held,
+                      const std::vector<double>& inside = {});
+
+/// Per vertex (n of them): constraints.inside_gap for the vertices of constraints.inside, else 0.
+std::vector<double> inside_offsets(const MeshConstraints& constraints, int n);
 
 /// Energies of E_mesh's terms, each a plain sum of squares (mesh units squared) with its weight.
 struct MeshEnergyTerms {

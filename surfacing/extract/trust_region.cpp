@@ -14,9 +14,10 @@ namespace sketchsurf {
 
 namespace detail {
 
-ceres::CostFunction* make_projection_cost(const ImplicitModel& model, double weight, double gradient_floor) {
+ceres::CostFunction* make_projection_cost(const ImplicitModel& model, double weight, double gradient_floor,
+                                          double offset) {
   return new ceres::AutoDiffCostFunction<ProjectionResidual, 1, 3>(
-      new ProjectionResidual{&model, std::sqrt(weight), gradient_floor});
+      new ProjectionResidual{&model, std::sqrt(weight), gradient_floor, offset});
 }
 
 LaplacianCost::LaplacianCost(int neighbors, double weight, const Eigen::Matrix3d& projection)
@@ -68,7 +69,7 @@ void add_residual_blocks(const MeshEnergy& energy, std::vector<double>& x, ceres
   for (int v = 0; v < n; ++v) problem.AddParameterBlock(&x[3 * v], 3);
   for (const ProjectionTerm& t : energy.project)
     problem.AddResidualBlock(
-        make_projection_cost((*energy.models)[t.model], t.weight, t.floor), nullptr,
+        make_projection_cost((*energy.models)[t.model], t.weight, t.floor, t.offset), nullptr,
         &x[3 * t.vertex]);
   std::vector<double*> params;
   for (const auto* terms : {&energy.regularize_2d, &energy.regularize_1d})

@@ -31,8 +31,10 @@ OptimizeSummary optimize_mesh_trust_region(LabeledMesh& mesh, const std::vector<
 namespace detail {
 
 /// ProjectionResidual (energy.h) as a Ceres cost function with automatic derivatives: weight is
-/// the term's weight (its square root multiplies the residual). The model must outlive it.
-ceres::CostFunction* make_projection_cost(const ImplicitModel& model, double weight, double gradient_floor);
+/// the term's weight (its square root multiplies the residual), offset its target level set's
+/// (0: the zero set). The model must outlive it.
+ceres::CostFunction* make_projection_cost(const ImplicitModel& model, double weight, double gradient_floor,
+                                          double offset = 0.0);
 
 /// Eq. 9 residual of one vertex: sqrt(weight) P (x_0 - mean(x_1..x_k)), the uniform graph
 /// Laplacian (Nealen et al. 2006) of the vertex x_0 with neighbours x_1..x_k (a 1-ring for

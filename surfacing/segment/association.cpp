@@ -152,17 +152,7 @@ StrokeGraph associate(const Sketch& sketch, const TriMesh& proxy_in,
   const int nf = static_cast<int>(F.rows());
   const int ne = static_cast<int>(proxy.n_edges());
 
-  // Area-weighted vertex normals.
-  graph.normals = Eigen::MatrixX3d::Zero(nv, 3);
-  for (int f = 0; f < nf; ++f) {
-    const V3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    const V3 n = (b - a).cross(c - a);
-    for (int k = 0; k < 3; ++k) graph.normals.row(F(f, k)) += n;
-  }
-  for (int v = 0; v < nv; ++v) {
-    const double len = graph.normals.row(v).norm();
-    if (len > 0) graph.normals.row(v) /= len;
-  }
+  graph.normals = vertex_normals(V, F);
 
   // Edges, dual graph, and the edge-size factor c_e.
   graph.edges.resize(ne);

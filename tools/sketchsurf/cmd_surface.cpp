@@ -141,6 +141,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                       {"regions_at_proxy", ex.smooth_fallback.kept},
                       {"smooth_parts", ex.smooth_fallback.parts},
                       {"smooth_parts_at_proxy", ex.smooth_fallback.reverted},
+                      {"back_side_vertices", ex.back_side_vertices},
                       {"sharp_vertices", ex.sharp_vertices},
                       {"trimmed_faces", ex.trimmed_faces},
                       {"open", ex.open},
