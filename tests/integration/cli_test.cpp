@@ -108,7 +108,10 @@ TEST(Cli, UsageErrorsExitWith2) {
            {"info"},
            {"convert", in, (dir / "out.xyz").string()},
            {"convert", (dir / "missing.json").string(), (dir / "out.xyz").string()},
-           {"convert", in, in}}) {
+           {"convert", in, in},
+           {"proxy", in, "-o", (dir / "p.ply").string(), "--param", "segment.epsilon=0.1"},
+           {"proxy", in, "-o", (dir / "p.ply").string(), "--param", "proxy.lambda"},
+           {"proxy", in, "-o", (dir / "p.ply").string(), "--param", "proxy.confine_radius=2"}}) {
     std::string joined;
     for (const auto& a : args) joined += a + " ";
     SCOPED_TRACE(joined);
@@ -119,6 +122,19 @@ TEST(Cli, UsageErrorsExitWith2) {
   EXPECT_NE(run_cli(dir, {"convert", in, (dir / "out.xyz").string()}).err.find("out.xyz"),
             std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(dir / "out.xyz"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "p.ply"));
+}
+
+TEST(Cli, ProxyParamsReachTheProxy) {
+  TempDir dir;
+  write_sketch(example(), dir / "s.json");
+  const CliResult r = run_cli(dir, {"-q", "proxy", (dir / "s.json").string(), "-o",
+                                    (dir / "p.ply").string(), "--report", (dir / "r.json").string(),
+                                    "--param", "proxy.lambda=0.002", "--param", "proxy.edge=0.03"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto report = nlohmann::json::parse(testing::read_text(dir / "r.json"));
+  EXPECT_DOUBLE_EQ(report["vipss"]["lambda"].get<double>(), 0.002);
+  EXPECT_DOUBLE_EQ(report["parameters"]["edge"].get<double>(), 0.03);
 }
 
 TEST(Cli, MissingOrInvalidFilesExitWith3NamingTheFile) {

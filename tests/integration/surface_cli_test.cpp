@@ -92,6 +92,25 @@ TEST(SurfaceCli, WritesTheMeshTheRegionsAndTheReport) {
   EXPECT_GE(report["timings"]["total_s"].get<double>(), report["timings"]["extraction_s"].get<double>());
   EXPECT_TRUE(fs::exists(dir / "regions.ply"));
 
+  // --param sets a parameter over the file's own; a bad one is a usage error before any work.
+  const std::string again = "surface " + (dir / "cube.json").string() + " --proxy " +
+                            (dir / "proxy.ply").string() + " --report " +
+                            (dir / "param.json").string() + " -o " + (dir / "param.ply").string();
+  const CliRun set = run_cli(again + " --param segment.epsilon=0.02 --param segment.restarts=1", dir);
+  ASSERT_EQ(set.code, 0) << set.err;
+  std::ifstream param_in(dir / "param.json");
+  const nlohmann::json param_report = nlohmann::json::parse(param_in);
+  EXPECT_DOUBLE_EQ(param_report["parameters"]["epsilon"].get<double>(), 0.02);
+  EXPECT_EQ(param_report["restarts"], 1);
+  fs::remove(dir / "param.ply");
+  for (const std::string bad : {"segment.epsilonn=1", "segment.epsilon", "segment.epsilon=x",
+                                "segment.epsilon=-1"}) {
+    const CliRun refused = run_cli(again + " --param " + bad, dir);
+    EXPECT_EQ(refused.code, 2) << bad << ": " << refused.err;
+    EXPECT_NE(refused.err.find("--param"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir / "param.ply")) << bad;
+  }
+
   // An unknown parameter in the file is an input error naming it.
   cube.params = {{"segment.epsilonn", 0.1}};
   write_sketch(cube, dir / "typo.json");

@@ -1,12 +1,13 @@
 // sketchsurf proxy SKETCH -o proxy.(obj|ply) [--points N] [--lambda F] [--edge F] [--from MESH]
-// [--report report.json]: the proxy surface (paper §5 "Proxy creation"), automatic (VIPSS) or a
-// user mesh attracted to the strokes.
+// [--param proxy.NAME=VALUE]... [--report report.json]: the proxy surface (paper §5 "Proxy
+// creation"), automatic (VIPSS) or a user mesh attracted to the strokes.
 
 
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "surfacing/pipeline.h"
 #include "surfacing/proxy/proxy.h"
 #include "surfacing/sketch/io/atomic_file.h"
 #include "surfacing/sketch/io/mesh_io.h"
@@ -23,6 +24,7 @@ struct ProxyCommandOptions {
   std::string output;
   std::string from;
   std::string report;
+  std::vector<std::string> params;
   ProxyOptions proxy;
 };
 
@@ -62,7 +64,25 @@ nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt)
   return j;
 }
 
-void run_proxy(const ProxyCommandOptions& opt, const GlobalOptions& global) {
+// The proxy options with the --param assignments applied over them: proxy.* names only.
+ProxyOptions with_params(const ProxyCommandOptions& opt) {
+  const std::map<std::string, double> given = parse_params(opt.params);
+  for (const auto& [name, value] : given)
+    if (name.rfind("proxy.", 0) != 0)
+      throw Error::usage("--param: the proxy command takes proxy.* parameters only, got '" + name + "'");
+  Params params;
+  params.proxy = opt.proxy;
+  try {
+    params.apply(given);
+  } catch (const Error& e) {
+    throw Error::usage(std::string("--param: ") + e.what());
+  }
+  return params.proxy;
+}
+
+void run_proxy(const ProxyCommandOptions& given, const GlobalOptions& global) {
+  ProxyCommandOptions opt = given;
+  opt.proxy = with_params(given);
   std::string why;
   if (!opt.proxy.valid(&why)) throw Error::usage(why);
   RunFiles files;
@@ -123,6 +143,11 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global) {
                 "Attract the VIPSS surface to the strokes too (flattens it between strokes: for "
                 "sharp, planar sketches)")
       ->excludes("--from");
+  cmd->add_option("--param", opt->params,
+                  "NAME=VALUE: set a proxy parameter by its dotted name (proxy.confine_radius, "
+                  "proxy.window_value, ...; an unknown name lists them all), applied after the "
+                  "options above. Repeatable")
+      ->allow_extra_args(false);
   cmd->add_option("--report", opt->report, "Write counts, genus and per-stage timings as JSON");
   cmd->add_option("--threads", opt->proxy.threads, "Worker threads (0 = all)")
       ->capture_default_str()

@@ -1,5 +1,6 @@
 // sketchsurf surface SKETCH [--proxy MESH] -o OUT.(obj|ply) [--report report.json]
-// [--regions regions.ply] [--mirror x|y|z|a,b,c,d] [--boundary-strokes IDS] [--seed N]:
+// [--regions regions.ply] [--mirror x|y|z|a,b,c,d] [--boundary-strokes IDS] [--seed N]
+// [--param NAME=VALUE]...:
 // the piecewise-smooth surface of a sketch (the whole method, paper §4-5).
 
 
@@ -33,6 +34,7 @@ struct SurfaceCommandOptions {
   std::string regions;
   std::string mirror;
   std::string boundary_strokes;
+  std::vector<std::string> params;
   std::optional<std::uint64_t> seed;
   std::optional<unsigned> threads;
   bool keep_all_strokes = false;
@@ -196,6 +198,12 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
   } catch (const Error& e) {
     throw Error::input(opt.sketch, e.what());
   }
+  const std::map<std::string, double> given = parse_params(opt.params);
+  try {
+    params.apply(given);
+  } catch (const Error& e) {
+    throw Error::usage(std::string("--param: ") + e.what());
+  }
   if (opt.seed) params.segment.seed = *opt.seed;
   if (opt.keep_all_strokes) params.prepare.ignore_decorations = false;
   if (opt.closed) params.prepare.open_rims = false;
@@ -218,6 +226,7 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
   if (global.verbose) {
     std::cerr << "surface: parameters";
     for (const auto& [k, v] : sketch.params) std::cerr << " " << k << "=" << v;
+    for (const auto& [k, v] : given) std::cerr << " " << k << "=" << v << " (--param)";
     std::cerr << "; seed " << params.segment.seed << ", restarts " << params.segment.restarts
               << ", gamma_2d " << params.extract.energy.gamma_2d << ", gamma_1d "
               << params.extract.energy.gamma_1d << (sketch.mirror ? ", mirrored" : "") << "\n";
@@ -310,6 +319,11 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
                   "Symmetry plane: x, y, z or a,b,c,d (a x + b y + c z + d = 0); overrides the file's");
   cmd->add_option("--boundary-strokes", opt->boundary_strokes,
                   "Ids of strokes bounding an open surface, e.g. 3,5,9-12 (adds to the file's marks)");
+  cmd->add_option("--param", opt->params,
+                  "NAME=VALUE: set a pipeline parameter by its dotted name (proxy.lambda, "
+                  "segment.epsilon, ...; an unknown name lists them all), over the sketch file's "
+                  "own; the options below win over both. Repeatable")
+      ->allow_extra_args(false);
   cmd->add_option("--seed", opt->seed, "Random seed of the segmentation")
       ->check(whole_number(0, UINT64_MAX));
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all); never changes the result")

@@ -140,4 +140,21 @@ CLI::Validator non_negative_number() {
   return number_check("a number >= 0", [](double v) { return v >= 0; });
 }
 
+std::map<std::string, double> parse_params(const std::vector<std::string>& assignments) {
+  std::map<std::string, double> out;
+  for (const std::string& a : assignments) {
+    const std::size_t eq = a.find('=');
+    double value = 0;
+    const char* end = a.data() + a.size();
+    const auto [ptr, ec] = eq == std::string::npos ? std::from_chars_result{end, std::errc::invalid_argument}
+                                                   : std::from_chars(a.data() + eq + 1, end, value);
+    if (eq == std::string::npos || eq == 0 || eq + 1 == a.size() || ec != std::errc() ||
+        ptr != end || !std::isfinite(value))
+      throw Error::usage("--param: expected NAME=VALUE with a number as the value (for example "
+                         "proxy.lambda=0.001), got '" + a + "'");
+    out[a.substr(0, eq)] = value;
+  }
+  return out;
+}
+
 }  // namespace sketchsurf::cli

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,11 @@ CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi);
 CLI::Validator positive_number();
 /// CLI11 check: a finite number >= 0.
 CLI::Validator non_negative_number();
+
+/// The --param assignments "NAME=VALUE" (a dotted parameter name as Params::apply() takes it, a
+/// finite number) as a map; throws Error (Usage) quoting the first one that is not of that form.
+/// A name given twice keeps its last value.
+std::map<std::string, double> parse_params(const std::vector<std::string>& assignments);
 
 /// Largest --threads accepted (0 = all cores); more threads than this only cost memory.
 constexpr std::uint64_t kMaxThreads = 1024;
