@@ -87,6 +87,22 @@ class PointGrid {
     return best;
   }
 
+  /// Calls fn(index, squared distance) for every point within `radius` of p.
+  template <class Fn>
+  void for_each_within(const Eigen::Vector3d& p, double radius, Fn&& fn) const {
+    const std::array<int, 3> lo = coords((p.array() - radius).matrix().transpose());
+    const std::array<int, 3> hi = coords((p.array() + radius).matrix().transpose());
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        const std::size_t end = start_[index({hi[0], y, z}) + 1];
+        for (std::size_t k = start_[index({lo[0], y, z})]; k < end; ++k) {
+          const int v = vertices_[k];
+          const double d2 = (V_.row(v).transpose() - p).squaredNorm();
+          if (d2 <= radius * radius) fn(v, d2);
+        }
+      }
+  }
+
  private:
   std::array<int, 3> coords(const Eigen::RowVector3d& p) const {
     std::array<int, 3> c{};

@@ -144,6 +144,81 @@ struct Window {
   }
 };
 
+// The sketch's outline: stroke points whose nearby strokes lie on one side of them, each with the
+// half-space (x - p).n <= gap the surface keeps to (n: away from those strokes). The direction is
+// minus the mean direction (weighted by (1 - (r/reach)^2)^2) from the point to the strokes within
+// `outline_reach` (those closer than two cells left out); its length says how one-sided the
+// strokes around the point are (0: all round, 1: all on one side). The gap is outline_gap where
+// that length is above outline_to, growing smoothly to no limit at outline_from.
+struct Outline {
+  Outline() = default;
+  Outline(const Outline&) = delete;  // `grid` refers to `points`
+  Outline& operator=(const Outline&) = delete;
+
+  Eigen::MatrixX3d points, normals;
+  Eigen::VectorXd gaps;
+  std::unique_ptr<PointGrid> grid;
+  double blend = 0.0;
+
+  // The blended half-space distance at x: the mean of (x - p).n - gap over the outline points,
+  // weighted by exp(-(|x - p|^2 - d0^2) / blend^2) (d0: the nearest one's distance), so that the
+  // cut is smooth across the points' Voronoi cells. -inf when there is no outline.
+  double value(const Eigen::Vector3d& x, Eigen::Vector3d* normal) const {
+    if (!grid) return -std::numeric_limits<double>::infinity();
+    const double d0 = grid->nearest(x).second;
+    double sum = 0.0, weight = 0.0;
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    grid->for_each_within(x, std::sqrt(d0 + 9.0 * blend * blend), [&](int j, double d2) {
+      const double w = std::exp(-(d2 - d0) / (blend * blend));
+      sum += w * ((x - points.row(j).transpose()).dot(normals.row(j).transpose()) - gaps[j]);
+      n += w * normals.row(j).transpose();
+      weight += w;
+    });
+    if (normal) *normal = n.normalized();
+    return sum / weight;
+  }
+};
+
+// Fills `out` (empty when outline_gap is 0 or no point is on the outline).
+void find_outline(const Sketch& unit, const ProxyOptions& options, Outline& out) {
+  if (!(options.outline_gap > 0.0)) return;
+  const Eigen::MatrixX3d coarse = stroke_targets(unit, 4.0 * options.cell);  // every 2 cells
+  const double reach = options.outline_reach, skip = 2.0 * options.cell;
+  Eigen::MatrixX3d mean = Eigen::MatrixX3d::Zero(coarse.rows(), 3);
+  parallel_for(0, static_cast<std::size_t>(coarse.rows()), options.threads, [&](std::size_t k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double weight = 0.0;
+    for (Eigen::Index j = 0; j < coarse.rows(); ++j) {
+      const Eigen::Vector3d d = (coarse.row(j) - coarse.row(i)).transpose();
+      const double r2 = d.squaredNorm();
+      if (r2 > reach * reach || r2 < skip * skip) continue;
+      const double u = 1.0 - r2 / (reach * reach), w = u * u;
+      sum += w * d / std::sqrt(r2);
+      weight += w;
+    }
+    if (weight > 0.0) mean.row(i) = (sum / weight).transpose();
+  });
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index i = 0; i < coarse.rows(); ++i)
+    if (mean.row(i).norm() > options.outline_from) kept.push_back(i);
+  if (kept.empty()) return;
+  const auto n = static_cast<Eigen::Index>(kept.size());
+  out.points.resize(n, 3);
+  out.normals.resize(n, 3);
+  out.gaps.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Vector3d m = mean.row(kept[static_cast<std::size_t>(k)]).transpose();
+    const double length = m.norm();
+    const double t = std::min(1.0, (length - options.outline_from) / (options.outline_to - options.outline_from));
+    out.points.row(k) = coarse.row(kept[static_cast<std::size_t>(k)]);
+    out.normals.row(k) = (-m / length).transpose();
+    out.gaps[k] = options.outline_gap / std::max(t * t * (3.0 - 2.0 * t), 0.05);
+  }
+  out.grid = std::make_unique<PointGrid>(out.points);
+  out.blend = options.outline_blend;
+}
+
 // The surface the automatic proxy follows: VIPSS's zero set inside the strokes' neighbourhood,
 // g(x) = max(s f(x), d(x) - radius), with s = sign / G making f positive outside (at the box
 // corners) and a distance to first order near the samples (G: the median |grad f| there), and d
@@ -162,6 +237,7 @@ class ConfinedField {
 
   double scale() const { return scale_; }
   void set_windows(std::vector<Window> windows) { windows_ = std::move(windows); }
+  void set_outline(const Outline* outline) { outline_ = outline; }
 
   // g at p (and, with `to_surface`, the Newton step that moves p onto g = 0 to first order).
   double value(const Eigen::Vector3d& p, Eigen::Vector3d* to_surface = nullptr) const {
@@ -174,6 +250,14 @@ class ConfinedField {
       const double d = std::sqrt(d2);
       cap = d - radius_;
       if (d > 0.0) away = (p - strokes_.row(i).transpose()) / d;
+      if (outline_) {  // beyond the outline's half-spaces
+        Eigen::Vector3d n;
+        const double beyond = outline_->value(p, to_surface ? &n : nullptr);
+        if (beyond > cap) {
+          cap = beyond;
+          away = n;
+        }
+      }
       for (int a = 0; a < 3; ++a)  // the box's slabs: signed distance outside each face
         for (const double side : {-1.0, 1.0}) {
           const double wall = side * (p[a] - (side > 0 ? within_.max[a] : within_.min[a]));
@@ -208,6 +292,7 @@ class ConfinedField {
   double radius_;
   BoundingBox within_;
   double band_;
+  const Outline* outline_ = nullptr;
   std::vector<Window> windows_;
 
   double bumps(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
@@ -465,6 +550,14 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(confine_radius >= 0.0 && confine_radius < 1.0))
     return fail("proxy confine_radius must be in [0, 1)");
   if (!(confine_box >= 0.0 && confine_box < 1.0)) return fail("proxy confine_box must be in [0, 1)");
+  if (!(outline_gap >= 0.0 && outline_gap < 1.0)) return fail("proxy outline_gap must be in [0, 1)");
+  if (!(outline_reach > 0.0 && outline_reach < 1.0))
+    return fail("proxy outline_reach must be in (0, 1)");
+  if (!(outline_from >= 0.0 && outline_to > outline_from && outline_to <= 1.0))
+    return fail("proxy outline_from and outline_to must satisfy 0 <= outline_from < outline_to <= 1");
+  if (!(outline_blend > 0.0 && outline_blend < 1.0))
+    return fail("proxy outline_blend must be in (0, 1)");
+  if (!(outline_most >= 0.0 && outline_most <= 1.0)) return fail("proxy outline_most must be in [0, 1]");
   if (!(vipss_tolerance > 0.0 && vipss_tolerance < 1.0))
     return fail("proxy vipss_tolerance must be in (0, 1)");
   if (!(edge > 1e-4 && edge < 0.5)) return fail("proxy edge must be in (1e-4, 0.5) of the diagonal");
@@ -564,6 +657,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   box.max.array() += options.padding;
   const Eigen::MatrixX3d stroke_points = stroke_targets(unit, options.cell);
   const PointGrid stroke_grid(stroke_points);
+  Outline outline;
+  find_outline(unit, options, outline);
   r.confine_radius = options.confine_radius;
   BoundingBox within;
   for (Eigen::Index i = 0; i < stroke_points.rows(); ++i) within.extend(stroke_points.row(i).transpose());
@@ -579,7 +674,24 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     TriMesh mesh;
     double lambda = 0.0, far = 0.0;
     long genus = 0;
-    std::size_t evaluations = 0;
+    std::size_t components = 0, evaluations = 0;
+  };
+  // The zero set of g, polygonised; specks dropped.
+  const auto polygonise = [&](const ConfinedField& g, TriMesh& mesh, std::size_t& evaluations) {
+    const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
+      values.resize(p.rows());
+      const auto rows = static_cast<std::size_t>(p.rows());
+      parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t k) {
+        for (std::size_t i = k * kChunk; i < std::min(rows, (k + 1) * kChunk); ++i)
+          values[static_cast<Eigen::Index>(i)] =
+              g.value(p.row(static_cast<Eigen::Index>(i)).transpose());
+      });
+    };
+    PolygonizeSummary poly_summary;
+    mesh = polygonize(field, samples, box, poly, progress, &poly_summary);
+    evaluations += poly_summary.evaluations;
+    if (mesh.n_faces() > 0) drop_specks(mesh, options.min_component);
+    return mesh_topology(mesh);
   };
   const auto solve = [&](double lambda) {
     auto t = Clock::now();
@@ -594,23 +706,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                                               distance_scale(c.vipss->function, samples, box),
                                               stroke_points, stroke_grid, r.confine_radius, within,
                                               2.0 * options.cell);
-    const auto polygonise = [&](const ConfinedField& g, TriMesh& mesh) {
-      const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
-        values.resize(p.rows());
-        const auto rows = static_cast<std::size_t>(p.rows());
-        parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t k) {
-          for (std::size_t i = k * kChunk; i < std::min(rows, (k + 1) * kChunk); ++i)
-            values[static_cast<Eigen::Index>(i)] =
-                g.value(p.row(static_cast<Eigen::Index>(i)).transpose());
-        });
-      };
-      PolygonizeSummary poly_summary;
-      mesh = polygonize(field, samples, box, poly, progress, &poly_summary);
-      c.evaluations += poly_summary.evaluations;
-      if (mesh.n_faces() > 0) drop_specks(mesh, options.min_component);
-      return mesh_topology(mesh);
-    };
-    MeshTopology topology = polygonise(*c.field, c.mesh);
+    MeshTopology topology = polygonise(*c.field, c.mesh, c.evaluations);
     if (options.window_value > 0.0 && topology.genus > 0) {
       // Handles may be windows through thin double walls: closed where that removes handles
       // without splitting the surface. Searched on a grid of two cells within ten cells of a
@@ -622,7 +718,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
         auto closed = std::make_unique<ConfinedField>(*c.field);
         closed->set_windows(std::move(windows));
         TriMesh mesh;
-        const MeshTopology without = polygonise(*closed, mesh);
+        const MeshTopology without = polygonise(*closed, mesh, c.evaluations);
         if (mesh.n_faces() > 0 && without.genus < topology.genus &&
             without.components <= topology.components) {
           c.field = std::move(closed);
@@ -634,6 +730,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (c.mesh.n_faces() > 0) {
       c.far = far_fraction(c.mesh, stroke_grid, options.far_distance);
       c.genus = topology.genus;
+      c.components = topology.components;
     }
     r.polygonize_seconds += seconds_since(t);
     return c;
@@ -654,6 +751,31 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (kept.mesh.n_faces() == 0 || (c.mesh.n_faces() > 0 && !kept_better))
       kept = std::move(c);
     if (closed) break;
+  }
+  // The outline cut, where the strokes frame a surface (a sketch whose surface lies mostly far
+  // from every stroke, a flower's petals, is left whole: cut, it falls apart into pieces that no
+  // longer show that it depicts no surface). Kept when it adds no handle and splits nothing.
+  const auto crosses_outline = [&](const TriMesh& mesh) {
+    std::vector<char> beyond(mesh.n_vertices(), 0);
+    parallel_for(0, mesh.n_vertices(), threads, [&](std::size_t v) {
+      const auto p = mesh.point(TriMesh::VertexHandle(static_cast<int>(v)));
+      beyond[v] = outline.value(Eigen::Vector3d(p[0], p[1], p[2]), nullptr) > 0.0;
+    });
+    return std::find(beyond.begin(), beyond.end(), 1) != beyond.end();
+  };
+  if (outline.grid && kept.mesh.n_faces() > 0 && kept.far <= options.outline_most &&
+      crosses_outline(kept.mesh)) {
+    const auto t = Clock::now();
+    auto cut = std::make_unique<ConfinedField>(*kept.field);
+    cut->set_outline(&outline);
+    TriMesh mesh;
+    const MeshTopology topology = polygonise(*cut, mesh, kept.evaluations);
+    if (mesh.n_faces() > 0 && topology.genus <= kept.genus && topology.components <= kept.components) {
+      kept.field = std::move(cut);
+      kept.mesh = std::move(mesh);
+      r.outline_cut = true;
+    }
+    r.polygonize_seconds += seconds_since(t);
   }
   r.lambda = kept.lambda;
   r.far_area = kept.far;

@@ -47,6 +47,23 @@ struct ProxyOptions {
                                 ///< the strokes' bounding box either (fraction of diagonal): the
                                 ///< offset surface that closes a cut would reach confine_radius
                                 ///< past the outermost strokes
+  double outline_gap = 0.0;     ///< with confine_radius > 0, no surface farther than this
+                                ///< (fraction of diagonal; 0 = off, the default; 0.04 to use it)
+                                ///< beyond the sketch's outline: at a stroke point whose nearby
+                                ///< strokes all lie on one side, the
+                                ///< surface keeps to the half-space within this gap of it, away
+                                ///< from them (a flange past a drawn base, a flare past a handle's
+                                ///< strokes, a foot's skirt are cut and closed there)
+  double outline_reach = 0.25;  ///< strokes within this distance of a point (fraction of
+                                ///< diagonal) decide whether it is on the outline
+  double outline_from = 0.3;    ///< a point is on the outline when the mean direction to those
+  double outline_to = 0.5;      ///< strokes is longer than outline_from; its gap grows from
+                                ///< outline_gap (length outline_to and above) to no limit
+  double outline_blend = 0.03;  ///< the half-spaces of nearby outline points are blended over
+                                ///< this distance (fraction of diagonal), so that the cut is smooth
+  double outline_most = 0.7;    ///< ... and the cut is made only when at most this fraction of the
+                                ///< surface lies farther than far_distance from every stroke (more:
+                                ///< the strokes frame no surface; cut, it would fall apart)
   double window_value = 0.025;  ///< where a solve's surface has handles, the windows through thin
                                 ///< double walls are closed: saddles of the distance-scaled VIPSS
                                 ///< function with a value below this (fraction of diagonal; 0 =
@@ -114,6 +131,7 @@ struct ProxyReport {
   double far_area = 0.0;          ///< automatic proxy: area fraction of the kept solve's surface
                                   ///< farther than far_distance from every stroke
   double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
+  bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
   std::size_t vipss_solves = 0;   ///< automatic proxy: smoothing weights tried
   std::size_t evaluations = 0;    ///< implicit-function evaluations by the polygoniser
   std::size_t anchors = 0;        ///< user proxy: vertices pulled to strokes

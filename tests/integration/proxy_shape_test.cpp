@@ -127,6 +127,31 @@ TEST(ProxyShape, ChairLegsStayApart) {
   expect_within_strokes(m, 0.05);
 }
 
+TEST(ProxyShape, WineglassFootEndsAtItsRim) {
+  // The foot is a disc of radius 0.26 about the y axis (y from -0.5 to -0.45), drawn by its rim and
+  // strokes across its top. Past the rim no stroke is; VIPSS's zero set runs on there as a skirt to
+  // the box around the strokes (radius 0.39 at the box's corners) unless the outline stops it.
+  const testing::TruthShape glass = testing::truth_shape("wineglass");
+  ProxyOptions outline;
+  outline.outline_gap = 0.04;
+  for (const SynthOptions::Style style : {SynthOptions::Style::Net, SynthOptions::Style::Vr}) {
+    SynthOptions options;
+    options.style = style;
+    Made m;
+    m.sketch = synthesize_sketch(glass.mesh, options);
+    m.proxy = make_proxy(m.sketch, outline, {}, &m.report);
+    EXPECT_TRUE(m.report.outline_cut);
+    const double diagonal = m.sketch.bounding_box().diagonal();
+    double widest = 0.0;
+    for (const auto v : m.proxy.vertices()) {
+      const Eigen::Vector3d p = to_eigen(m.proxy.point(v));
+      if (p.y() < -0.44) widest = std::max(widest, std::hypot(p.x(), p.z()));
+    }
+    EXPECT_GT(widest, 0.24) << "the foot is kept";
+    EXPECT_LT(widest, 0.26 + 0.06 * diagonal) << "no skirt past the rim";
+  }
+}
+
 TEST(ProxyShape, ThinPlateIsNotInflated) {
   const testing::TruthShape plate = testing::truth_shape("thin_plate");
   Made m;

@@ -54,6 +54,7 @@ nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt)
                   {"lambda", r.lambda},
                   {"solves", r.vipss_solves},
                   {"far_area", r.far_area},
+                  {"outline_cut", r.outline_cut},
                   {"confine_radius", r.confine_radius},
                   {"termination", r.vipss.termination},
                   {"evaluations", r.evaluations}};

@@ -130,7 +130,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                   {"cleaning", rep.cleaning.messages}}},
       {"proxy", {{"user", rep.user_proxy}, {"vertices", r.proxy.n_vertices()}, {"faces", r.proxy.n_faces()},
                  {"genus", rep.proxy.topology.genus}, {"lambda", rep.proxy.lambda},
-                 {"far_area", rep.proxy.far_area}}},
+                 {"far_area", rep.proxy.far_area}, {"outline_cut", rep.proxy.outline_cut}}},
       {"extraction", {{"solver", ex.optimization.solver},
                       {"termination", ex.optimization.termination},
                       {"solver_iterations", ex.optimization.iterations},
