@@ -758,8 +758,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   const auto crosses_outline = [&](const TriMesh& mesh) {
     std::vector<char> beyond(mesh.n_vertices(), 0);
     parallel_for(0, mesh.n_vertices(), threads, [&](std::size_t v) {
-      const auto p = mesh.point(TriMesh::VertexHandle(static_cast<int>(v)));
-      beyond[v] = outline.value(Eigen::Vector3d(p[0], p[1], p[2]), nullptr) > 0.0;
+      beyond[v] = outline.value(to_eigen(mesh.point(TriMesh::VertexHandle(static_cast<int>(v)))),
+                                nullptr) > 0.0;
     });
     return std::find(beyond.begin(), beyond.end(), 1) != beyond.end();
   };
