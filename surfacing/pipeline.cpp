@@ -125,6 +125,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"extract.sharp_angle", setter([](Params& p) -> auto& { return p.extract.energy.sharp_angle; })},
       {"extract.attract_weight", setter([](Params& p) -> auto& { return p.extract.energy.attract_weight; })},
       {"extract.trust_distance", setter([](Params& p) -> auto& { return p.extract.energy.trust_distance; })},
+      {"extract.box_margin", setter([](Params& p) -> auto& { return p.extract.energy.box_margin; })},
       {"extract.max_iterations", setter([](Params& p) -> auto& { return p.extract.energy.max_iterations; })},
       {"extract.lbfgs_rank", setter([](Params& p) -> auto& { return p.extract.energy.lbfgs_rank; })},
       {"extract.projection_steps", setter([](Params& p) -> auto& { return p.extract.energy.projection_steps; })},

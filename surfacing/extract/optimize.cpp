@@ -43,6 +43,7 @@ bool MeshEnergyOptions::valid(std::string* why) const {
   if (projection_steps < 0) return fail("extract.projection_steps must be >= 0");
   if (!(max_projection_step > 0.0)) return fail("extract.max_projection_step must be > 0");
   if (!(trust_distance >= 0.0)) return fail("extract.trust_distance must be >= 0");
+  if (!(box_margin >= 0.0)) return fail("extract.box_margin must be >= 0");
   return true;
 }
 
@@ -170,7 +171,8 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   const std::vector<double> proxy = x;
   // Vertices whose surfaces lie only farther from the strokes than where the proxy put them stay
   // there: what they would land on (a far branch of a zero set, a model extrapolated past its
-  // strokes) is not what the strokes depict. Tested after the first projection, and once more
+  // strokes) is not what the strokes depict. So do vertices that would leave the strokes' grown
+  // box from inside it (box_margin). Tested after the first projection, and once more
   // after the solve (the solve can carry vertices there step by step); a vertex held then makes
   // a second solve from the proxy.
   MeshConstraints trusted = constraints;
@@ -178,6 +180,13 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   if (options.trust_distance > 0.0 && constraints.strokes && constraints.strokes->segments.rows() > 0)
     tree.emplace(constraints.strokes->points, constraints.strokes->segments);
   const double reach = options.trust_distance * size;
+  const auto outside_box = [&, margin = options.box_margin * size](const double* p) {
+    if (!(options.box_margin > 0.0) || !constraints.strokes) return false;
+    const BoundingBox& box = constraints.strokes->box;
+    for (int c = 0; c < 3; ++c)
+      if (p[c] < box.min[c] - margin || p[c] > box.max[c] + margin) return true;
+    return false;
+  };
   std::vector<char> held(static_cast<std::size_t>(n), 0);
   for (int v : constraints.held) held[static_cast<std::size_t>(v)] = 1;
   const auto hold_far = [&](const std::vector<double>& at) {
@@ -192,7 +201,8 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
       const double* from = &proxy[3 * i];
       const double* to = &at[3 * i];
       const double moved = std::hypot(to[0] - from[0], to[1] - from[1], to[2] - from[2]);
-      far[i] = !held[i] && moved > reach && to_strokes(to) > to_strokes(from) + reach;
+      far[i] = !held[i] && ((moved > reach && to_strokes(to) > to_strokes(from) + reach) ||
+                            (outside_box(to) && !outside_box(from)));
     });
     bool any = false;
     for (int v = 0; v < n; ++v) {

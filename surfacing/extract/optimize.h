@@ -45,6 +45,11 @@ struct MeshEnergyOptions {
                                      ///< with the proxy, held at its start by E_attract instead of
                                      ///< projected; 0 = no limit (ours; the Surfacer sets 0 with a
                                      ///< user's proxy, rough by design)
+  double box_margin = 0.02;          ///< a vertex that those steps would take outside the strokes'
+                                     ///< bounding box grown by this (fraction of the mesh's
+                                     ///< diagonal), from inside it, also stays with the proxy: no
+                                     ///< stroke asks for surface there (an undrawn back that a
+                                     ///< region's model bulges past the sketch); 0 = no such test
   int local_global_iterations = 5;   ///< local-global iterations after the projection, 0 = none
                                      ///< (ours; each costs ~10 L-BFGS iterations)
   double local_global_tolerance = 1e-3;  ///< they stop early when no vertex moves more, fraction

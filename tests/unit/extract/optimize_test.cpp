@@ -41,6 +41,16 @@ ImplicitModel cubic_model() {
   return m;
 }
 
+/// The unit sphere x^2 + y^2 + z^2 - 1 as a quadric.
+ImplicitModel unit_sphere() {
+  ImplicitModel sphere;
+  sphere.degree = 2;
+  sphere.coefficients = Eigen::VectorXd::Zero(10);
+  sphere.coefficients[0] = -1.0;
+  sphere.coefficients[4] = sphere.coefficients[7] = sphere.coefficients[9] = 1.0;
+  return sphere;
+}
+
 TEST(MeshEnergyTerms, JacobiansMatchNumericDerivatives) {
   const ImplicitModel model = cubic_model();
   std::unique_ptr<ceres::CostFunction> project(detail::make_projection_cost(model, 0.5, 1e-6));
@@ -144,11 +154,7 @@ TEST(RegularizationWeights, DependOnTheAngleBetweenRegions) {
 }
 
 TEST(OptimizeMesh, ProjectsANoisySphereOntoItsModel) {
-  ImplicitModel sphere;
-  sphere.degree = 2;
-  sphere.coefficients = Eigen::VectorXd::Zero(10);
-  sphere.coefficients[0] = -1.0;  // x^2 + y^2 + z^2 - 1
-  sphere.coefficients[4] = sphere.coefficients[7] = sphere.coefficients[9] = 1.0;
+  const ImplicitModel sphere = unit_sphere();
   TriMesh mesh = testing::icosphere(4, 1.0);
   // Push every vertex off the sphere by up to 5%.
   int i = 0;
@@ -196,11 +202,7 @@ TEST(OptimizeMesh, KeepsPlaneVerticesOnThePlaneAndAttractsTargets) {
 TEST(OptimizeMesh, HeldVerticesStayAtTheirTargetsAndTheRestIsProjected) {
   // A sphere of radius 1.05 over the model of radius 1: the half x > 0 is held at the start
   // (what a region kept at the proxy gets), the rest is projected.
-  ImplicitModel sphere;
-  sphere.degree = 2;
-  sphere.coefficients = Eigen::VectorXd::Zero(10);
-  sphere.coefficients[0] = -1.0;
-  sphere.coefficients[4] = sphere.coefficients[7] = sphere.coefficients[9] = 1.0;
+  const ImplicitModel sphere = unit_sphere();
   LabeledMesh m{testing::icosphere(4, 1.05), {}, {}};
   m.labels.assign(m.mesh.n_vertices(), {0});
   m.source_vertex.assign(m.mesh.n_vertices(), -1);
@@ -221,6 +223,47 @@ TEST(OptimizeMesh, HeldVerticesStayAtTheirTargetsAndTheRestIsProjected) {
       EXPECT_NEAR(p.norm(), 1.0, 0.01) << "projected vertex " << v.idx();
     }
   }
+}
+
+TEST(OptimizeMesh, VerticesStayInsideTheStrokesGrownBox) {
+  // A proxy squashed to z in [-0.9, 0.9], drawn only along its equator and two rings at
+  // z = +-0.85, over the unit sphere as model: projection would carry the poles to z = +-1,
+  // past the strokes' box (z within 0.85) grown by box_margin. The rings are 0.33 from the
+  // poles either way, so the distance to the strokes alone (trust_distance) does not hold them.
+  const ImplicitModel sphere = unit_sphere();
+  TriMesh proxy = testing::icosphere(4, 1.0);
+  for (auto v : proxy.vertices()) proxy.point(v)[2] *= 0.9;
+  Sketch sketch;
+  for (double z : {-0.85, 0.0, 0.85}) {
+    Stroke ring;
+    const double r = std::sqrt(1.0 - (z / 0.9) * (z / 0.9));
+    for (int k = 0; k <= 64; ++k)
+      ring.points.emplace_back(r * std::cos(k * M_PI / 32.0), r * std::sin(k * M_PI / 32.0), z);
+    sketch.strokes.push_back(ring);
+  }
+  MeshConstraints c;
+  c.strokes = stroke_segments(sketch, false);
+  auto top = [&](double margin, std::size_t* held) {
+    LabeledMesh m{proxy, std::vector<std::vector<int>>(proxy.n_vertices(), {0}),
+                  std::vector<int>(proxy.n_vertices(), -1)};
+    MeshEnergyOptions o;
+    o.box_margin = margin;
+    const OptimizeSummary s = optimize_mesh(m, {sphere}, c, o);
+    EXPECT_TRUE(s.usable) << s.termination;
+    *held = s.held_vertices;
+    double z = 0.0;
+    for (auto v : m.mesh.vertices()) z = std::max(z, std::abs(m.mesh.point(v)[2]));
+    for (auto v : m.mesh.vertices())
+      if (std::abs(m.mesh.point(v)[2]) < 0.3)
+        EXPECT_NEAR(to_eigen(m.mesh.point(v)).norm(), 1.0, 0.01) << "projected vertex " << v.idx();
+    return z;
+  };
+  std::size_t held = 0;
+  EXPECT_GT(top(0.0, &held), 0.97) << "without the box test the poles reach the model";
+  EXPECT_EQ(held, 0u);
+  const double margin = 0.02 * std::sqrt(2.0 * 2.0 + 2.0 * 2.0 + 1.8 * 1.8);  // of the mesh's diagonal
+  EXPECT_LT(top(0.02, &held), 0.85 + margin + 0.01);
+  EXPECT_GT(held, 0u);
 }
 
 TEST(OptimizeMesh, SameResultWhateverTheThreadCount) {
