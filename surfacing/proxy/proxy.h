@@ -47,9 +47,9 @@ struct ProxyOptions {
                                 ///< the strokes' bounding box either (fraction of diagonal): the
                                 ///< offset surface that closes a cut would reach confine_radius
                                 ///< past the outermost strokes
-  double outline_gap = 0.0;     ///< with confine_radius > 0, no surface farther than this
-                                ///< (fraction of diagonal; 0 = off, the default; 0.04 to use it)
-                                ///< beyond the sketch's outline: at a stroke point whose nearby
+  double outline_gap = 0.04;    ///< with confine_radius > 0, no surface farther than this
+                                ///< (fraction of diagonal; 0 = off) beyond the sketch's
+                                ///< outline: at a stroke point whose nearby
                                 ///< strokes all lie on one side, the
                                 ///< surface keeps to the half-space within this gap of it, away
                                 ///< from them (a flange past a drawn base, a flare past a handle's

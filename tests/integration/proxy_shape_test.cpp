@@ -132,8 +132,7 @@ TEST(ProxyShape, WineglassFootEndsAtItsRim) {
   // strokes across its top. Past the rim no stroke is; VIPSS's zero set runs on there as a skirt to
   // the box around the strokes (radius 0.39 at the box's corners) unless the outline stops it.
   const testing::TruthShape glass = testing::truth_shape("wineglass");
-  ProxyOptions outline;
-  outline.outline_gap = 0.04;
+  const ProxyOptions outline;  // the defaults cut at the outline
   for (const SynthOptions::Style style : {SynthOptions::Style::Net, SynthOptions::Style::Vr}) {
     SynthOptions options;
     options.style = style;
