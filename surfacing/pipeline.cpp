@@ -272,9 +272,10 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   // Final mesh (§4.3, App. D).
   t = Clock::now();
   // A user's proxy is rough by design (a low-poly model): its vertices may rightly move far onto
-  // the regions' surfaces, so the trust region is for the automatic proxy only.
+  // the regions' surfaces and past the strokes' box, so the trust region and the box test are
+  // for the automatic proxy only.
   ExtractOptions extract_options = params_.extract;
-  if (user_proxy) extract_options.energy.trust_distance = 0.0;
+  if (user_proxy) extract_options.energy.trust_distance = extract_options.energy.box_margin = 0.0;
   ExtractedSurface surface = [&] {
     try {
       return extract(result.proxy, result.segmentation.labels, result.segmentation.models, work,

@@ -190,18 +190,18 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   std::vector<char> held(static_cast<std::size_t>(n), 0);
   for (int v : constraints.held) held[static_cast<std::size_t>(v)] = 1;
   const auto hold_far = [&](const std::vector<double>& at) {
-    if (!tree) return false;
+    if (!tree && !(options.box_margin > 0.0 && constraints.strokes)) return false;
     const auto to_strokes = [&](const double* p) {
       const Eigen::Vector3d point(p[0], p[1], p[2]);
       Eigen::Vector3d q;
-      return tree->closest_face(point, &q) < 0 ? 0.0 : (q - point).norm();
+      return !tree || tree->closest_face(point, &q) < 0 ? 0.0 : (q - point).norm();
     };
     std::vector<char> far(static_cast<std::size_t>(n), 0);
     parallel_for(0, static_cast<std::size_t>(n), threads, [&](std::size_t i) {
       const double* from = &proxy[3 * i];
       const double* to = &at[3 * i];
       const double moved = std::hypot(to[0] - from[0], to[1] - from[1], to[2] - from[2]);
-      far[i] = !held[i] && ((moved > reach && to_strokes(to) > to_strokes(from) + reach) ||
+      far[i] = !held[i] && ((tree && moved > reach && to_strokes(to) > to_strokes(from) + reach) ||
                             (outside_box(to) && !outside_box(from)));
     });
     bool any = false;

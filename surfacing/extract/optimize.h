@@ -50,6 +50,7 @@ struct MeshEnergyOptions {
                                      ///< diagonal), from inside it, also stays with the proxy: no
                                      ///< stroke asks for surface there (an undrawn back that a
                                      ///< region's model bulges past the sketch); 0 = no such test
+                                     ///< (ours; the Surfacer sets 0 with a user's proxy)
   int local_global_iterations = 5;   ///< local-global iterations after the projection, 0 = none
                                      ///< (ours; each costs ~10 L-BFGS iterations)
   double local_global_tolerance = 1e-3;  ///< they stop early when no vertex moves more, fraction

@@ -243,19 +243,22 @@ TEST(OptimizeMesh, VerticesStayInsideTheStrokesGrownBox) {
   }
   MeshConstraints c;
   c.strokes = stroke_segments(sketch, false);
-  auto top = [&](double margin, std::size_t* held) {
+  auto top = [&](double margin, std::size_t* held, double trust = MeshEnergyOptions{}.trust_distance) {
     LabeledMesh m{proxy, std::vector<std::vector<int>>(proxy.n_vertices(), {0}),
                   std::vector<int>(proxy.n_vertices(), -1)};
     MeshEnergyOptions o;
     o.box_margin = margin;
+    o.trust_distance = trust;
     const OptimizeSummary s = optimize_mesh(m, {sphere}, c, o);
     EXPECT_TRUE(s.usable) << s.termination;
     *held = s.held_vertices;
     double z = 0.0;
     for (auto v : m.mesh.vertices()) z = std::max(z, std::abs(m.mesh.point(v)[2]));
-    for (auto v : m.mesh.vertices())
-      if (std::abs(m.mesh.point(v)[2]) < 0.3)
+    for (auto v : m.mesh.vertices()) {
+      if (std::abs(m.mesh.point(v)[2]) < 0.3) {
         EXPECT_NEAR(to_eigen(m.mesh.point(v)).norm(), 1.0, 0.01) << "projected vertex " << v.idx();
+      }
+    }
     return z;
   };
   std::size_t held = 0;
@@ -263,6 +266,8 @@ TEST(OptimizeMesh, VerticesStayInsideTheStrokesGrownBox) {
   EXPECT_EQ(held, 0u);
   const double margin = 0.02 * std::sqrt(2.0 * 2.0 + 2.0 * 2.0 + 1.8 * 1.8);  // of the mesh's diagonal
   EXPECT_LT(top(0.02, &held), 0.85 + margin + 0.01);
+  EXPECT_GT(held, 0u);
+  EXPECT_LT(top(0.02, &held, 0.0), 0.85 + margin + 0.01) << "the box test alone, no trust distance";
   EXPECT_GT(held, 0u);
 }
 
