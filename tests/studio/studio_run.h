@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -70,16 +71,20 @@ class StudioProcess {
   }
   pid_t pid() const { return pid_; }
   std::string log() const { return read_text(log_); }
-  /// Waits until the log contains `text` (true) or the process ends or `timeout_s` passes.
-  bool wait_for(const std::string& text, double timeout_s = 60.0) {
+  /// Waits until `done(log)` holds (true) or the process ends or `timeout_s` passes.
+  bool wait_until(const std::function<bool(const std::string&)>& done, double timeout_s = 60.0) {
     const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
     while (std::chrono::steady_clock::now() < until) {
-      if (log().find(text) != std::string::npos) return true;
+      if (done(log())) return true;
       if (!exited_ && waitpid(pid_, &status_, WNOHANG) == pid_) exited_ = true;
-      if (exited_) return log().find(text) != std::string::npos;
+      if (exited_) return done(log());
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return false;
+  }
+  /// Waits until the log contains `text` (true) or the process ends or `timeout_s` passes.
+  bool wait_for(const std::string& text, double timeout_s = 60.0) {
+    return wait_until([&](const std::string& log) { return log.find(text) != std::string::npos; }, timeout_s);
   }
   /// Sends `signal` and waits for the end; the exit code (-signal when killed by one).
   int stop(int signal) {
