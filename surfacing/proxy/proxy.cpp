@@ -19,6 +19,7 @@
 #include "surfacing/proxy/point_grid.h"
 #include "surfacing/proxy/polygonize.h"
 #include "surfacing/proxy/remesh.h"
+#include "surfacing/proxy/saddles.h"
 #include "surfacing/proxy/sampling.h"
 #include "surfacing/sketch/io/sketch_io.h"
 
@@ -120,30 +121,6 @@ Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge) {
   return targets;
 }
 
-// A window through a thin double wall (a mug's, a plate's): between strokes, the inside layer of
-// VIPSS's function pinches out and leaves a hole; its centre is a saddle of f with a small
-// positive value, a maximum within the window's plane and a minimum across it. It is closed by
-// a bump that lowers f within an ellipsoid around the centre: its plane's radii cover the hole,
-// the one across it a few grid cells, so the walls nearby barely move.
-struct Window {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // columns: the window's plane, then across
-  Eigen::Vector3d radii = Eigen::Vector3d::Ones();
-  double depth = 0.0;  // the bump's value at the centre, distance units
-
-  // The bump depth * (1 - q)^3 with q the squared ellipsoidal radius (0 for q >= 1), and its
-  // gradient added to `gradient` (if given).
-  double value(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
-    const Eigen::Vector3d local = (axes.transpose() * (p - centre)).cwiseQuotient(radii);
-    const double q = local.squaredNorm();
-    if (q >= 1.0) return 0.0;
-    const double u = 1.0 - q;
-    if (gradient)
-      *gradient += axes * (-6.0 * depth * u * u * local.cwiseQuotient(radii));
-    return depth * u * u * u;
-  }
-};
-
 // The sketch's outline: stroke points whose nearby strokes lie on one side of them, each with the
 // half-space (x - p).n <= gap the surface keeps to (n: away from those strokes). The direction is
 // minus the mean direction (weighted by (1 - (r/reach)^2)^2) from the point to the strokes within
@@ -227,7 +204,7 @@ void find_outline(const Sketch& unit, const ProxyOptions& options, Outline& out)
 // it is cut at `radius` and closed by the strokes' offset surface; where it stays near the
 // strokes, it is VIPSS's. The offset surface itself stops at `within` (the strokes' box, grown a
 // little): a cap never reaches past the strokes' extent. radius = 0: f alone. Windows to close
-// (see Window) lower s f by their bumps.
+// and gaps to bridge (saddles.h) lower s f by their bumps.
 class ConfinedField {
  public:
   ConfinedField(const HermiteRbf& f, double scale, const Eigen::MatrixX3d& strokes,
@@ -236,7 +213,8 @@ class ConfinedField {
         band_(band) {}
 
   double scale() const { return scale_; }
-  void set_windows(std::vector<Window> windows) { windows_ = std::move(windows); }
+  void set_bumps(std::vector<Bump> bumps) { bumps_ = std::move(bumps); }
+  const std::vector<Bump>& bumps() const { return bumps_; }
   void set_outline(const Outline* outline) { outline_ = outline; }
 
   // g at p (and, with `to_surface`, the Newton step that moves p onto g = 0 to first order).
@@ -268,18 +246,18 @@ class ConfinedField {
         }
       if (cap > band_ && !to_surface) return cap;  // outside whatever f says
     }
-    if (!to_surface) return std::max(cap, scale_ * f_.value(p) - bumps(p, nullptr));
+    if (!to_surface) return std::max(cap, scale_ * f_.value(p) - lowered(p, nullptr));
     Eigen::Vector3d g;
     const double value = f_.value_gradient(p, &g);
-    Eigen::Vector3d lowered = Eigen::Vector3d::Zero();
-    const double own = scale_ * value - (windows_.empty() ? 0.0 : bumps(p, &lowered));
+    Eigen::Vector3d down = Eigen::Vector3d::Zero();
+    const double own = scale_ * value - (bumps_.empty() ? 0.0 : lowered(p, &down));
     if (cap > own) {
       *to_surface = -cap * away;
       return cap;
     }
-    if (!windows_.empty()) g = scale_ * g - lowered;  // the gradient of own, not of f
+    if (!bumps_.empty()) g = scale_ * g - down;  // the gradient of own, not of f
     const double g2 = g.squaredNorm();
-    const double over = windows_.empty() ? value : own;
+    const double over = bumps_.empty() ? value : own;
     *to_surface = g2 > 0.0 ? Eigen::Vector3d(-over / g2 * g) : Eigen::Vector3d::Zero();
     return own;
   }
@@ -293,11 +271,11 @@ class ConfinedField {
   BoundingBox within_;
   double band_;
   const Outline* outline_ = nullptr;
-  std::vector<Window> windows_;
+  std::vector<Bump> bumps_;
 
-  double bumps(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+  double lowered(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
     double sum = 0.0;
-    for (const Window& w : windows_) sum += w.value(p, gradient);
+    for (const Bump& b : bumps_) sum += b.value(p, gradient);
     return sum;
   }
 };
@@ -330,114 +308,6 @@ double distance_scale(const HermiteRbf& f, const Eigen::MatrixX3d& samples, cons
   const auto mid = norms.begin() + static_cast<std::ptrdiff_t>(norms.size() / 2);
   std::nth_element(norms.begin(), mid, norms.end());
   return (2 * positive >= total ? 1.0 : -1.0) / std::max(*mid, 1e-300);
-}
-
-// The windows (see Window) of the distance-scaled function s f: its saddles with a value in
-// (0, most), two negative curvatures (the window's plane) and one positive (across it). Found by
-// Newton's method (ending within 5 h of its start) from the points of a grid of spacing h over
-// `box`, within `near` of a stroke, where the central-difference gradient norm is a local minimum
-// (among the 26 neighbours outside the surface) below 0.8: s f is a distance to first order near
-// the surface, gradient norm near 1 but at critical points.
-// The hole's radius in each plane direction is sqrt(2 value / |curvature|) (the saddle as a
-// quadric); the bump covers twice that (at most 5 h), `across` across and lowers s f by value +
-// across / 4 at the centre: a membrane about as thick as the walls around it.
-std::vector<Window> find_windows(const HermiteRbf& f, double scale, const PointGrid& strokes,
-                                 double near, const BoundingBox& box, double h, double most,
-                                 double across, unsigned threads) {
-  const Eigen::Vector3d extent = box.max - box.min;
-  std::array<int, 3> n{};
-  for (int a = 0; a < 3; ++a) n[a] = static_cast<int>(std::ceil(extent[a] / h)) + 1;
-  const auto id = [&](int i, int j, int k) {
-    return (static_cast<std::size_t>(k) * n[1] + j) * n[0] + i;
-  };
-  const std::size_t count = static_cast<std::size_t>(n[0]) * n[1] * n[2];
-  std::vector<std::size_t> near_ids;
-  for (int k = 0; k < n[2]; ++k)
-    for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i)
-        if (strokes.nearest(box.min + h * Eigen::Vector3d(i, j, k), near).first >= 0)
-          near_ids.push_back(id(i, j, k));
-  Eigen::MatrixX3d points(static_cast<Eigen::Index>(near_ids.size()), 3);
-  for (std::size_t r = 0; r < near_ids.size(); ++r) {
-    const std::size_t q = near_ids[r];
-    const Eigen::Vector3d ijk(static_cast<double>(q % n[0]), static_cast<double>(q / n[0] % n[1]),
-                              static_cast<double>(q / n[0] / n[1]));
-    points.row(static_cast<Eigen::Index>(r)) = (box.min + h * ijk).transpose();
-  }
-  Eigen::VectorXd near_values;
-  f.values(points, near_values, threads);
-  constexpr double kUnknown = std::numeric_limits<double>::infinity();
-  std::vector<double> value(count, kUnknown), slope(count, kUnknown);
-  for (std::size_t r = 0; r < near_ids.size(); ++r)
-    value[near_ids[r]] = scale * near_values[static_cast<Eigen::Index>(r)];
-  const auto inner = [&](int i, int j, int k) {
-    return i > 0 && j > 0 && k > 0 && i + 1 < n[0] && j + 1 < n[1] && k + 1 < n[2];
-  };
-  for (int k = 1; k + 1 < n[2]; ++k)
-    for (int j = 1; j + 1 < n[1]; ++j)
-      for (int i = 1; i + 1 < n[0]; ++i) {
-        const Eigen::Vector3d d(value[id(i + 1, j, k)] - value[id(i - 1, j, k)],
-                                value[id(i, j + 1, k)] - value[id(i, j - 1, k)],
-                                value[id(i, j, k + 1)] - value[id(i, j, k - 1)]);
-        if (d.allFinite()) slope[id(i, j, k)] = d.norm() / (2.0 * h);
-      }
-  const auto value_gradient = [&](const Eigen::Vector3d& x, Eigen::Vector3d* g) {
-    const double v = scale * f.value_gradient(x, g);
-    *g *= scale;
-    return v;
-  };
-  std::vector<Window> windows;
-  for (int k = 1; k + 1 < n[2]; ++k)
-    for (int j = 1; j + 1 < n[1]; ++j)
-      for (int i = 1; i + 1 < n[0]; ++i) {
-        const double v = value[id(i, j, k)], g = slope[id(i, j, k)];
-        if (!(v > 0.0 && v < most && g < 0.8)) continue;
-        bool minimum = true;
-        for (int c = -1; c <= 1 && minimum; ++c)
-          for (int b = -1; b <= 1 && minimum; ++b)
-            for (int a = -1; a <= 1 && minimum; ++a)
-              if ((a || b || c) && inner(i + a, j + b, k + c) &&
-                  value[id(i + a, j + b, k + c)] > 0.0)
-                minimum = !(slope[id(i + a, j + b, k + c)] < g);
-        if (!minimum) continue;
-        const Eigen::Vector3d start = box.min + h * Eigen::Vector3d(i, j, k);
-        Eigen::Vector3d x = start, grad;
-        Eigen::Matrix3d hessian;
-        bool converged = false;
-        for (int step = 0; step < 20 && !converged; ++step) {
-          constexpr double kDelta = 1e-5;
-          for (int a = 0; a < 3; ++a) {
-            Eigen::Vector3d plus, minus;
-            value_gradient(x + kDelta * Eigen::Vector3d::Unit(a), &plus);
-            value_gradient(x - kDelta * Eigen::Vector3d::Unit(a), &minus);
-            hessian.col(a) = (plus - minus) / (2.0 * kDelta);
-          }
-          hessian = (0.5 * (hessian + hessian.transpose())).eval();
-          value_gradient(x, &grad);
-          converged = grad.norm() < 1e-6;
-          Eigen::Vector3d move = -hessian.fullPivLu().solve(grad);
-          if (!move.allFinite()) break;
-          if (move.norm() > h) move *= h / move.norm();
-          if (!converged) x += move;
-        }
-        if (!converged || (x - start).norm() > 5.0 * h) continue;
-        const double centre = value_gradient(x, &grad);
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(hessian);
-        const Eigen::Vector3d curvature = eig.eigenvalues();  // ascending
-        if (!(centre > 0.0 && centre < most && curvature[1] < 0.0 && curvature[2] > 0.0)) continue;
-        bool seen = false;
-        for (const Window& w : windows) seen = seen || (w.centre - x).norm() < h;
-        if (seen) continue;
-        Window w;
-        w.centre = x;
-        w.axes = eig.eigenvectors();
-        for (int a = 0; a < 2; ++a)
-          w.radii[a] = std::min(5.0 * h, 2.0 * std::sqrt(2.0 * centre / -curvature[a]));
-        w.radii[2] = across;
-        w.depth = centre + across / 4.0;
-        windows.push_back(w);
-      }
-  return windows;
 }
 
 // Removes the connected components whose area is below `min_fraction` of the whole: specks of
@@ -573,6 +443,12 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(far_most > 0.0 && far_most <= 1.0)) return fail("proxy far_most must be in (0, 1]");
   if (!(window_value >= 0.0 && window_value < 0.5))
     return fail("proxy window_value must be in [0, 0.5)");
+  if (!(window_reach >= 0.0 && window_reach <= 2.0))
+    return fail("proxy window_reach must be in [0, 2]");
+  if (!(window_points >= 0 && window_points <= 100000))
+    return fail("proxy window_points must be in [0, 100000]");
+  if (!(bridge_value >= 0.0 && bridge_value < 0.5))
+    return fail("proxy bridge_value must be in [0, 0.5)");
   if (!(min_component >= 0.0 && min_component < 1.0))
     return fail("proxy min_component must be in [0, 1)");
   if (projection_steps < 0) return fail("proxy projection_steps must be >= 0");
@@ -675,6 +551,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     double lambda = 0.0, far = 0.0;
     long genus = 0;
     std::size_t components = 0, evaluations = 0;
+    std::size_t windows = 0, bridges = 0;  // bumps kept
   };
   // The zero set of g, polygonised; specks dropped.
   const auto polygonise = [&](const ConfinedField& g, TriMesh& mesh, std::size_t& evaluations) {
@@ -693,6 +570,13 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (mesh.n_faces() > 0) drop_specks(mesh, options.min_component);
     return mesh_topology(mesh);
   };
+  SaddleSearch search;
+  search.near = 10.0 * options.cell;
+  search.step = 2.0 * options.cell;
+  search.across = 4.0 * options.cell;
+  search.window_reach = options.window_reach;
+  search.window_points = options.window_points;
+  search.bridge_most = options.bridge_value;
   const auto solve = [&](double lambda) {
     auto t = Clock::now();
     Candidate c;
@@ -707,26 +591,32 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                                               stroke_points, stroke_grid, r.confine_radius, within,
                                               2.0 * options.cell);
     MeshTopology topology = polygonise(*c.field, c.mesh, c.evaluations);
-    if (options.window_value > 0.0 && topology.genus > 0) {
-      // Handles may be windows through thin double walls: closed where that removes handles
-      // without splitting the surface. Searched on a grid of two cells within ten cells of a
-      // stroke: a window lies on a wall between strokes, a few cells from them.
-      std::vector<Window> windows =
-          find_windows(c.vipss->function, c.field->scale(), stroke_grid, 10.0 * options.cell, box,
-                       2.0 * options.cell, options.window_value, 4.0 * options.cell, threads);
-      if (!windows.empty()) {
-        auto closed = std::make_unique<ConfinedField>(*c.field);
-        closed->set_windows(std::move(windows));
-        TriMesh mesh;
-        const MeshTopology without = polygonise(*closed, mesh, c.evaluations);
-        if (mesh.n_faces() > 0 && without.genus < topology.genus &&
-            without.components <= topology.components) {
-          c.field = std::move(closed);
-          c.mesh = std::move(mesh);
-          topology = without;
-        }
-      }
-    }
+    // Saddles searched on a grid of two cells within ten cells of a stroke: a window lies on a
+    // wall between strokes, a gap between two parts a stroke runs across, a few cells from them.
+    SaddleSearch here = search;
+    here.window_most = topology.genus > 0 ? options.window_value : 0.0;
+    const Saddles saddles = find_saddles(c.vipss->function, c.field->scale(), unit, stroke_grid,
+                                         box, here, threads);
+    // Windows closed where that removes handles without splitting the surface; then bridges
+    // built where that splits nothing (a bridge adds a handle or joins two parts).
+    const auto try_bumps = [&](const std::vector<Bump>& bumps, bool removes_handles) {
+      if (bumps.empty()) return false;
+      auto bumped = std::make_unique<ConfinedField>(*c.field);
+      std::vector<Bump> all = c.field->bumps();
+      all.insert(all.end(), bumps.begin(), bumps.end());
+      bumped->set_bumps(std::move(all));
+      TriMesh mesh;
+      const MeshTopology with = polygonise(*bumped, mesh, c.evaluations);
+      if (mesh.n_faces() == 0 || with.components > topology.components ||
+          (removes_handles && with.genus >= topology.genus))
+        return false;
+      c.field = std::move(bumped);
+      c.mesh = std::move(mesh);
+      topology = with;
+      return true;
+    };
+    if (try_bumps(saddles.windows, true)) c.windows = saddles.windows.size();
+    if (try_bumps(saddles.bridges, false)) c.bridges = saddles.bridges.size();
     if (c.mesh.n_faces() > 0) {
       c.far = far_fraction(c.mesh, stroke_grid, options.far_distance);
       c.genus = topology.genus;
@@ -778,6 +668,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     r.polygonize_seconds += seconds_since(t);
   }
   r.lambda = kept.lambda;
+  r.windows = kept.windows;
+  r.bridges = kept.bridges;
   r.far_area = kept.far;
   r.vipss = kept.vipss->summary;
   r.evaluations = kept.evaluations;

@@ -71,7 +71,18 @@ struct ProxyOptions {
                                 ///< across, as between two walls whose inside layer pinches out
                                 ///< where no stroke holds it. Kept only when it removes handles
                                 ///< and splits nothing. Openings the strokes depict (a mug's
-                                ///< handle, holes through a plate) have larger values
+                                ///< handle, holes through a plate) have larger values. The
+                                ///< window's open region (where the walls' mid-surface is outside
+                                ///< with a value below this) is flooded from the saddle and
+                                ///< closed by a membrane: a thin plate's slots are long, not round
+  double window_reach = 0.6;    ///< ... at most this far from the saddle (fraction of diagonal)
+  int window_points = 400;      ///< ... with at most this many membrane bumps per window
+  double bridge_value = 0.025;  ///< gaps between two parts of the surface that nearly touch
+                                ///< (saddles of the distance-scaled VIPSS function with a value in
+                                ///< (0, bridge_value), a maximum along the gap and a minimum
+                                ///< across it; 0 = off) are bridged where a stroke crosses the gap
+                                ///< outside the surface: the strokes depict a connection there (a
+                                ///< handle's end drawn onto the wall). Kept when it splits nothing
   double min_component = 0.01;  ///< parts of the polygonised surface with less than this fraction
                                 ///< of its area are dropped (specks the confinement cuts off)
   double vipss_tolerance = 1e-7;  ///< L-BFGS relative energy change at which the normals are
@@ -132,6 +143,8 @@ struct ProxyReport {
                                   ///< farther than far_distance from every stroke
   double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
   bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
+  std::size_t windows = 0;        ///< automatic proxy: membrane bumps closing windows
+  std::size_t bridges = 0;        ///< automatic proxy: gaps bridged
   std::size_t vipss_solves = 0;   ///< automatic proxy: smoothing weights tried
   std::size_t evaluations = 0;    ///< implicit-function evaluations by the polygoniser
   std::size_t anchors = 0;        ///< user proxy: vertices pulled to strokes

@@ -55,6 +55,8 @@ nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt)
                   {"solves", r.vipss_solves},
                   {"far_area", r.far_area},
                   {"outline_cut", r.outline_cut},
+                  {"window_bumps", r.windows},
+                  {"bridges", r.bridges},
                   {"confine_radius", r.confine_radius},
                   {"termination", r.vipss.termination},
                   {"evaluations", r.evaluations}};

@@ -1,0 +1,321 @@
+#include "surfacing/proxy/saddles.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace sketchsurf {
+
+double Bump::value(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+  const Eigen::Vector3d local = (axes.transpose() * (p - centre)).cwiseQuotient(radii);
+  const double q = local.squaredNorm();
+  if (q >= 1.0) return 0.0;
+  const double u = 1.0 - q;
+  if (gradient) *gradient += axes * (-6.0 * depth * u * u * local.cwiseQuotient(radii));
+  return depth * u * u * u;
+}
+
+namespace {
+
+constexpr double kUnknown = std::numeric_limits<double>::infinity();
+// The bump's profile (1 - q)^3 at a quarter of its squared radius (half its radius): a bump of
+// radius 2 r whose depth is v / kHalfway lowers the field by v at distance r from its centre.
+constexpr double kHalfway = 0.421875;
+
+// The search grid over the box: spacing h, values of s f at the points near a stroke.
+class SearchGrid {
+ public:
+  SearchGrid(const HermiteRbf& f, double scale, const PointGrid& strokes, const BoundingBox& box,
+             const SaddleSearch& search, unsigned threads)
+      : f_(f), scale_(scale), box_(box), h_(search.step) {
+    const Eigen::Vector3d extent = box.max - box.min;
+    for (int a = 0; a < 3; ++a) n_[a] = static_cast<int>(std::ceil(extent[a] / h_)) + 1;
+    count_ = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
+    std::vector<std::size_t> near_ids;
+    for (int k = 0; k < n_[2]; ++k)
+      for (int j = 0; j < n_[1]; ++j)
+        for (int i = 0; i < n_[0]; ++i)
+          if (strokes.nearest(point(i, j, k), search.near).first >= 0)
+            near_ids.push_back(id(i, j, k));
+    Eigen::MatrixX3d points(static_cast<Eigen::Index>(near_ids.size()), 3);
+    for (std::size_t r = 0; r < near_ids.size(); ++r) {
+      const std::size_t q = near_ids[r];
+      points.row(static_cast<Eigen::Index>(r)) =
+          point(static_cast<int>(q % n_[0]), static_cast<int>(q / n_[0] % n_[1]),
+                static_cast<int>(q / n_[0] / n_[1]))
+              .transpose();
+    }
+    Eigen::VectorXd near_values;
+    f.values(points, near_values, threads);
+    value_.assign(count_, kUnknown);
+    for (std::size_t r = 0; r < near_ids.size(); ++r)
+      value_[near_ids[r]] = scale * near_values[static_cast<Eigen::Index>(r)];
+  }
+
+  const std::array<int, 3>& size() const { return n_; }
+  std::size_t count() const { return count_; }
+  double step() const { return h_; }
+  std::size_t id(int i, int j, int k) const {
+    return (static_cast<std::size_t>(k) * n_[1] + j) * n_[0] + i;
+  }
+  bool inside(const std::array<int, 3>& c) const {
+    return c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < n_[0] && c[1] < n_[1] && c[2] < n_[2];
+  }
+  Eigen::Vector3d point(int i, int j, int k) const {
+    return box_.min + h_ * Eigen::Vector3d(i, j, k);
+  }
+  std::array<int, 3> cell_of(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d o = (x - box_.min) / h_;
+    return {static_cast<int>(std::lround(o.x())), static_cast<int>(std::lround(o.y())),
+            static_cast<int>(std::lround(o.z()))};
+  }
+  double grid_value(std::size_t q) const { return value_[q]; }
+
+  // s f at x and its gradient.
+  double value_gradient(const Eigen::Vector3d& x, Eigen::Vector3d* g) const {
+    const double v = scale_ * f_.value_gradient(x, g);
+    *g *= scale_;
+    return v;
+  }
+  double value(const Eigen::Vector3d& x) const {
+    Eigen::Vector3d g;
+    return value_gradient(x, &g);
+  }
+
+ private:
+  const HermiteRbf& f_;
+  double scale_;
+  BoundingBox box_;
+  double h_;
+  std::array<int, 3> n_{};
+  std::size_t count_ = 0;
+  std::vector<double> value_;
+};
+
+struct Saddle {
+  Eigen::Vector3d centre;
+  double value = 0.0;
+  Eigen::Vector3d curvature;  // ascending
+  Eigen::Matrix3d axes;       // the curvatures' directions, as columns
+};
+
+// The grid points where the central-difference gradient norm of s f is a local minimum below
+// 0.8 among the 26 neighbours outside the surface, with a value in (0, most).
+std::vector<std::array<int, 3>> candidates(const SearchGrid& grid, double most) {
+  const auto& n = grid.size();
+  const double h = grid.step();
+  std::vector<double> slope(grid.count(), kUnknown);
+  const auto at = [&](int i, int j, int k) { return grid.grid_value(grid.id(i, j, k)); };
+  for (int k = 1; k + 1 < n[2]; ++k)
+    for (int j = 1; j + 1 < n[1]; ++j)
+      for (int i = 1; i + 1 < n[0]; ++i) {
+        const Eigen::Vector3d d(at(i + 1, j, k) - at(i - 1, j, k),
+                                at(i, j + 1, k) - at(i, j - 1, k),
+                                at(i, j, k + 1) - at(i, j, k - 1));
+        if (d.allFinite()) slope[grid.id(i, j, k)] = d.norm() / (2.0 * h);
+      }
+  const auto inner = [&](int i, int j, int k) {
+    return i > 0 && j > 0 && k > 0 && i + 1 < n[0] && j + 1 < n[1] && k + 1 < n[2];
+  };
+  std::vector<std::array<int, 3>> out;
+  for (int k = 1; k + 1 < n[2]; ++k)
+    for (int j = 1; j + 1 < n[1]; ++j)
+      for (int i = 1; i + 1 < n[0]; ++i) {
+        const double v = at(i, j, k), g = slope[grid.id(i, j, k)];
+        if (!(v > 0.0 && v < most && g < 0.8)) continue;
+        bool minimum = true;
+        for (int c = -1; c <= 1 && minimum; ++c)
+          for (int b = -1; b <= 1 && minimum; ++b)
+            for (int a = -1; a <= 1 && minimum; ++a)
+              if ((a || b || c) && inner(i + a, j + b, k + c) &&
+                  at(i + a, j + b, k + c) > 0.0)
+                minimum = !(slope[grid.id(i + a, j + b, k + c)] < g);
+        if (minimum) out.push_back({i, j, k});
+      }
+  return out;
+}
+
+// Newton's method from `start` to a critical point of s f within 5 h of it (finite-difference
+// Hessian of the analytic gradient); false when it does not converge there.
+bool newton(const SearchGrid& grid, const Eigen::Vector3d& start, Saddle& out) {
+  const double h = grid.step();
+  Eigen::Vector3d x = start, grad;
+  Eigen::Matrix3d hessian;
+  bool converged = false;
+  for (int step = 0; step < 20 && !converged; ++step) {
+    constexpr double kDelta = 1e-5;
+    for (int a = 0; a < 3; ++a) {
+      Eigen::Vector3d plus, minus;
+      grid.value_gradient(x + kDelta * Eigen::Vector3d::Unit(a), &plus);
+      grid.value_gradient(x - kDelta * Eigen::Vector3d::Unit(a), &minus);
+      hessian.col(a) = (plus - minus) / (2.0 * kDelta);
+    }
+    hessian = (0.5 * (hessian + hessian.transpose())).eval();
+    grid.value_gradient(x, &grad);
+    converged = grad.norm() < 1e-6;
+    Eigen::Vector3d move = -hessian.fullPivLu().solve(grad);
+    if (!move.allFinite()) break;
+    if (move.norm() > h) move *= h / move.norm();
+    if (!converged) x += move;
+  }
+  if (!converged || (x - start).norm() > 5.0 * h) return false;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(hessian);
+  out.centre = x;
+  out.value = grid.value(x);
+  out.curvature = eig.eigenvalues();
+  out.axes = eig.eigenvectors();
+  return true;
+}
+
+// True when s f grows along `axis` from x, at distances t = across / 2, across and twice that
+// on either side, to at least 0.3 t: a window through a wall opens onto space on both sides (s f
+// about the distance to its rim, t or more), where in the gap between two faces (two boxes side
+// by side, the axis along the gap) s f stays about the gap's half-width.
+bool open_across(const SearchGrid& grid, const Eigen::Vector3d& x, const Eigen::Vector3d& axis,
+                 double across) {
+  for (const double t : {0.5 * across, across, 2.0 * across})
+    if (!(grid.value(x + t * axis) > 0.3 * t && grid.value(x - t * axis) > 0.3 * t)) return false;
+  return true;
+}
+
+// The window's own bump: the hole's radius in each plane direction is sqrt(2 value / |curvature|)
+// (the saddle as a quadric); the bump covers twice that (at most 5 h), `across` across, and lowers
+// s f by value + across / 4 at the centre.
+Bump window_bump(const Saddle& s, double h, double across) {
+  Bump b;
+  b.centre = s.centre;
+  b.axes = s.axes;
+  for (int a = 0; a < 2; ++a)
+    b.radii[a] = std::min(5.0 * h, 2.0 * std::sqrt(2.0 * s.value / -s.curvature[a]));
+  b.radii[2] = across;
+  b.depth = s.value + across / 4.0;
+  return b;
+}
+
+// The window's open region, flooded over the grid from its saddle: each grid point moved to the
+// minimum of s f along the saddle's across axis within one step, kept when that minimum is in
+// (0, most), rises on both sides, opens onto space across (open_across), lies within `reach` of
+// the saddle and within across / 2 of its plane (a flat wall; past that, the flood would crawl
+// along any surface that runs parallel to the axis a little way off, a box's edges). Each gets a
+// bump with
+// radius 2 h in the wall's plane that lowers s f to zero at `half` either side of the mid-surface
+// (the membrane's faces). `taken` marks the grid cells that already hold a bump.
+void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& search,
+                  std::vector<char>& taken, std::vector<Bump>& out) {
+  const double h = grid.step(), half = 0.35 * search.across;
+  const Eigen::Vector3d axis = s.axes.col(2);
+  std::vector<char> seen(grid.count(), 0);
+  std::vector<std::array<int, 3>> stack{grid.cell_of(s.centre)};
+  int added = 0;
+  while (!stack.empty() && added < search.window_points) {
+    const std::array<int, 3> c = stack.back();
+    stack.pop_back();
+    if (!grid.inside(c) || seen[grid.id(c[0], c[1], c[2])]) continue;
+    seen[grid.id(c[0], c[1], c[2])] = 1;
+    const Eigen::Vector3d p = grid.point(c[0], c[1], c[2]);
+    double best = kUnknown;
+    Eigen::Vector3d at = p;
+    for (int k = -4; k <= 4; ++k) {
+      const Eigen::Vector3d y = p + (k * h / 4.0) * axis;
+      const double v = grid.value(y);
+      if (v < best) best = v, at = y;
+    }
+    const Eigen::Vector3d from = at - s.centre;
+    if (!(best > 0.0 && best < search.window_most) || from.norm() > search.window_reach ||
+        std::abs(from.dot(axis)) > 0.5 * search.across ||
+        !(grid.value(at + (h / 4.0) * axis) > best && grid.value(at - (h / 4.0) * axis) > best) ||
+        !open_across(grid, at, axis, search.across))
+      continue;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (dx || dy || dz) stack.push_back({c[0] + dx, c[1] + dy, c[2] + dz});
+    const std::array<int, 3> home = grid.cell_of(at);
+    if (!grid.inside(home) || taken[grid.id(home[0], home[1], home[2])]) continue;
+    taken[grid.id(home[0], home[1], home[2])] = 1;
+    Bump b;
+    b.centre = at;
+    b.axes = s.axes;
+    b.radii = Eigen::Vector3d(2.0 * h, 2.0 * h, 2.0 * half);
+    b.depth =
+        std::max({grid.value(at + half * axis), grid.value(at - half * axis), best}) / kHalfway;
+    out.push_back(b);
+    ++added;
+  }
+}
+
+// The bridge over a gap saddle when strokes cross the gap's mid-plane (through the saddle, normal
+// to its negative curvature) within 2.5 h of it at least h / 2 outside the surface: a ball twice
+// as wide as the farthest such crossing that lowers s f there below zero. False when none crosses.
+bool bridge(const SearchGrid& grid, const Saddle& s, const Sketch& unit, Bump& out) {
+  const double h = grid.step(), reach = 2.5 * h;
+  const Eigen::Vector3d axis = s.axes.col(0);
+  double farthest = 0.0, miss = 0.0;
+  for (const Stroke& stroke : unit.strokes) {
+    if (stroke.ignored) continue;
+    for (std::size_t i = 1; i < stroke.points.size(); ++i) {
+      const Eigen::Vector3d& a = stroke.points[i - 1];
+      const Eigen::Vector3d& b = stroke.points[i];
+      const double ta = (a - s.centre).dot(axis), tb = (b - s.centre).dot(axis);
+      if (ta * tb > 0.0 || ta == tb) continue;
+      const Eigen::Vector3d crossing = a + (ta / (ta - tb)) * (b - a);
+      const double r = (crossing - s.centre).norm();
+      if (r > reach) continue;
+      const double value = grid.value(crossing);
+      if (value < 0.5 * h) continue;
+      farthest = std::max(farthest, r);
+      miss = std::max(miss, value);
+    }
+  }
+  if (!(miss > 0.0)) return false;
+  const double radius = 2.0 * std::max(farthest, h);
+  out.centre = s.centre;
+  out.axes = s.axes;
+  out.radii = Eigen::Vector3d::Constant(radius);
+  out.depth = (miss + h / 4.0) / kHalfway;
+  return true;
+}
+
+}  // namespace
+
+Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
+                     const PointGrid& strokes, const BoundingBox& box, const SaddleSearch& search,
+                     unsigned threads) {
+  Saddles found;
+  const double most = std::max(search.window_most, search.bridge_most);
+  if (!(most > 0.0)) return found;
+  const SearchGrid grid(f, scale, strokes, box, search, threads);
+  const double h = grid.step();
+  std::vector<char> taken(grid.count(), 0);
+  std::vector<Eigen::Vector3d> seen;
+  for (const std::array<int, 3>& c : candidates(grid, most)) {
+    Saddle s;
+    if (!newton(grid, grid.point(c[0], c[1], c[2]), s) || !(s.value > 0.0)) continue;
+    const bool window = s.value < search.window_most && s.curvature[1] < 0.0 &&
+                        s.curvature[2] > 0.0 &&
+                        open_across(grid, s.centre, s.axes.col(2), search.across);
+    const bool gap = s.value < search.bridge_most && s.curvature[0] < 0.0 && s.curvature[1] > 0.0;
+    if (!window && !gap) continue;
+    if (std::any_of(seen.begin(), seen.end(),
+                    [&](const Eigen::Vector3d& x) { return (x - s.centre).norm() < h; }))
+      continue;
+    seen.push_back(s.centre);
+    if (window) {
+      const std::size_t first = found.windows.size();
+      found.windows.push_back(window_bump(s, h, search.across));
+      flood_window(grid, s, search, taken, found.windows);
+      for (std::size_t i = first + 1; i < found.windows.size(); ++i)
+        seen.push_back(found.windows[i].centre);  // a saddle in a flooded region is that window's
+    } else {
+      Bump b;
+      if (bridge(grid, s, unit, b)) found.bridges.push_back(b);
+    }
+  }
+  return found;
+}
+
+}  // namespace sketchsurf

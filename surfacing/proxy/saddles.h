@@ -1,0 +1,64 @@
+#pragma once
+// Saddles of the proxy's distance-scaled VIPSS function where its zero set has the wrong topology
+// between strokes: windows through thin double walls, to close, and gaps that strokes cross, to
+// bridge (METHOD.md section 1: the proxy should have the shape the strokes depict).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "surfacing/proxy/point_grid.h"
+#include "surfacing/proxy/vipss.h"
+#include "surfacing/sketch/sketch.h"
+
+namespace sketchsurf {
+
+/// A bump that lowers the field within an ellipsoid: depth * (1 - q)^3, q the squared ellipsoidal
+/// radius (0 for q >= 1). Lowering a function that is positive outside puts material there.
+struct Bump {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  ///< columns: the ellipsoid's axes
+  Eigen::Vector3d radii = Eigen::Vector3d::Ones();
+  double depth = 0.0;  ///< the value at the centre, distance units
+
+  /// The bump at p; its gradient is added to `gradient` (if given).
+  double value(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const;
+};
+
+/// Where and how finely the saddles are searched, all lengths on the unit-diagonal sketch.
+struct SaddleSearch {
+  double near = 0.1;        ///< grid points farther than this from every stroke are not searched
+  double step = 0.02;       ///< grid spacing h
+  double window_most = 0.025;  ///< windows: saddle values in (0, window_most); 0 = none
+  double across = 0.04;     ///< a window's membrane thickness
+  double window_reach = 0.6;   ///< a window's open region is flooded this far from its saddle
+  int window_points = 400;     ///< at most this many membrane bumps per window
+  double bridge_most = 0.025;  ///< bridges: saddle values in (0, bridge_most); 0 = none
+};
+
+/// What find_saddles() found, as bumps to lower the field by.
+struct Saddles {
+  std::vector<Bump> windows;  ///< membranes over windows through thin double walls
+  std::vector<Bump> bridges;  ///< connections across gaps that strokes cross
+};
+
+/// The saddles of s f (s: the factor that makes f a distance to first order, positive outside)
+/// with a small positive value, found by Newton's method from the grid points near the strokes
+/// where the gradient norm is a local minimum below 0.8 (a distance has gradient norm 1 but at
+/// critical points):
+/// - a window: two negative curvatures (the window's plane) and one positive (across it), as
+///   between two walls whose inside layer pinches out where no stroke holds it. Its open region,
+///   the points whose minimum of s f across the wall is positive and below window_most, is
+///   flooded from the saddle over the grid, near the saddle's plane, and each point gets a small
+///   bump: together a membrane about as thick as the walls (the slot of a thin plate is long and
+///   flat-bottomed, not an ellipse).
+/// - a bridge: one negative curvature (along the gap) and two positive, as between two parts of
+///   the surface that nearly touch, kept only when a stroke crosses the gap's mid-plane near the
+///   saddle outside the surface (the strokes depict a connection there: a mug's handle meeting
+///   its wall). Its bump is a ball that reaches the crossing strokes.
+/// `unit` is the unit-diagonal sketch whose samples made f; `strokes` a grid over points along
+/// its strokes; `box` the search box.
+Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
+                     const PointGrid& strokes, const BoundingBox& box, const SaddleSearch& search,
+                     unsigned threads);
+
+}  // namespace sketchsurf
