@@ -632,14 +632,22 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // thin double walls (a mug's, a shell's), but where the strokes depict thin parts (a chair's
   // legs, seat and back, a lamp's arm) it melts them into a block whose faces lie far from every
   // stroke.
+  // The ladder's first weight is solved only when the second's surface has at least far_tie of
+  // its area far from every stroke (else the first could not be kept): less smoothing keeps a
+  // mug's handle and a chair's legs apart where more smoothing webs them to the body, but most
+  // sketches need the smoothing that the second weight gives.
+  const std::vector<double> ladder = lambda_ladder(options);
   Candidate kept;
-  for (const double lambda : lambda_ladder(options)) {
-    Candidate c = solve(lambda);
-    const bool closed = c.vipss->summary.closed;
+  const auto consider = [&](Candidate c) {
     const bool kept_better = kept.far + options.far_tie <= c.far && kept.far <= options.far_most &&
                              kept.genus <= c.genus + options.far_extra_genus;
-    if (kept.mesh.n_faces() == 0 || (c.mesh.n_faces() > 0 && !kept_better))
-      kept = std::move(c);
+    if (kept.mesh.n_faces() == 0 || (c.mesh.n_faces() > 0 && !kept_better)) kept = std::move(c);
+  };
+  for (std::size_t i = ladder.size() > 1 ? 1 : 0; i < ladder.size(); ++i) {
+    Candidate c = solve(ladder[i]);
+    const bool closed = c.vipss->summary.closed;
+    if (i == 1 && c.mesh.n_faces() > 0 && c.far >= options.far_tie) consider(solve(ladder[0]));
+    consider(std::move(c));
     if (closed) break;
   }
   // The outline cut, where the strokes frame a surface (a sketch whose surface lies mostly far

@@ -19,10 +19,13 @@ struct ProxyOptions {
                                ///< (factorisation) and n^2 per L-BFGS step; with smoothing, 400
                                ///< give the shape (1000: 3-10x the time on real sketches)
   double lambda = -1.0;        ///< VIPSS smoothing weight (VIPSS Eq. 9) on the unit-diagonal
-                               ///< sketch; 0 = interpolate; < 0 = chosen per sketch: the first of
-                               ///< lambda_min * lambda_step^k (up to lambda_max) whose zero set is
-                               ///< confined (see confine_margin), else see far_distance
-  double lambda_min = 1e-4;    ///< first smoothing weight tried when lambda < 0
+                               ///< sketch; 0 = interpolate; < 0 = chosen per sketch from the
+                               ///< ladder lambda_min * lambda_step^k (up to lambda_max): from its
+                               ///< second weight up to the first whose zero set is confined (see
+                               ///< confine_margin), then the choice of far_distance
+  double lambda_min = 1e-5;    ///< smallest smoothing weight tried when lambda < 0; the ladder
+                               ///< starts at its second weight, and the first is solved only when
+                               ///< that leaves at least far_tie of the surface far from the strokes
   double lambda_max = 1e-3;    ///< last smoothing weight tried when lambda < 0
   double lambda_step = 10.0;   ///< factor between the smoothing weights tried
   double far_distance = 0.05;  ///< when no weight of the ladder is confined, the largest is kept

@@ -76,12 +76,31 @@ TEST(ProxyShape, MugIsOneClosedPartWithinItsStrokes) {
   expect_within_strokes(m, 0.05);
 }
 
-// Not reached yet in the net style: the proxy has genus 0, its windows through the double wall
-// closed but the handle's opening filled by a bulge far from the strokes. Enable when the proxy
-// keeps the handle open.
-TEST(ProxyShape, DISABLED_MugKeepsItsHandle) {
+// The truth's handle (y up, centred): a ring of radius 0.13 about (0.25, 0, 0) in the xy plane,
+// tube 0.03, meeting the wall at y = +-0.115. Its centreline just outside the wall at both ends
+// is inside the proxy; the middle of its opening is not (as in the truth).
+void expect_handle_open_and_attached(const Made& m) {
+  const TriMesh& truth = testing::truth_shape("mug").mesh;
+  const Eigen::Vector3d opening(0.27, 0.0, 0.0);
+  ASSERT_LT(winding_number(truth, opening), 0.5);
+  EXPECT_LT(winding_number(m.proxy, opening), 0.5) << "handle opening";
+  for (const double y : {-0.1256, 0.1256}) {
+    const Eigen::Vector3d end(0.216, y, 0.0);
+    ASSERT_GT(winding_number(truth, end), 0.5);
+    EXPECT_GT(winding_number(m.proxy, end), 0.5) << "handle end at y " << y;
+  }
+}
+
+// Smoothed with the ladder's second weight, the handle's opening is webbed to the rim by a bulge
+// far from the strokes (and its windows' membranes close it); the least smoothed solve, tried
+// because of that far area, keeps it open.
+TEST(ProxyShape, MugKeepsItsHandle) {
   const Made m = proxy_of("mug");
+  EXPECT_EQ(m.topology.components, 1u);
   EXPECT_EQ(m.topology.genus, 1);
+  EXPECT_EQ(m.report.lambda, ProxyOptions{}.lambda_min);
+  expect_handle_open_and_attached(m);
+  expect_within_strokes(m, 0.05);
 }
 
 // Drawn mid-air (tremor, gaps, forgotten strokes), the double wall's inside layer pinches out
@@ -93,18 +112,17 @@ TEST(ProxyShape, MugDrawnInVrKeepsItsHandleAndNoWindow) {
   EXPECT_EQ(m.topology.components, 1u);
   EXPECT_EQ(m.topology.genus, 1);
   EXPECT_GE(m.report.bridges, 1u);
-  // The truth's handle (y up, centred): a ring of radius 0.13 about (0.25, 0, 0) in the xy plane,
-  // tube 0.03, meeting the wall at y = +-0.115. Its centreline just outside the wall at both ends
-  // is inside the proxy; the middle of its opening is not (as in the truth).
-  const TriMesh& truth = testing::truth_shape("mug").mesh;
-  const Eigen::Vector3d opening(0.27, 0.0, 0.0);
-  ASSERT_LT(winding_number(truth, opening), 0.5);
-  EXPECT_LT(winding_number(m.proxy, opening), 0.5) << "handle opening";
-  for (const double y : {-0.1256, 0.1256}) {
-    const Eigen::Vector3d end(0.216, y, 0.0);
-    ASSERT_GT(winding_number(truth, end), 0.5);
-    EXPECT_GT(winding_number(m.proxy, end), 0.5) << "handle end at y " << y;
-  }
+  expect_handle_open_and_attached(m);
+  expect_within_strokes(m, 0.05);
+}
+
+// Another draw (seed 2): the smoother weights web the handle to the wall (a third of the surface
+// far from every stroke); the least smoothed solve keeps the opening.
+TEST(ProxyShape, MugDrawnInVrWithoutAWebOverItsHandle) {
+  const Made m = proxy_of("mug", vr_style(2));
+  EXPECT_EQ(m.topology.components, 1u);
+  EXPECT_LT(m.report.far_area, 0.05);
+  expect_handle_open_and_attached(m);
   expect_within_strokes(m, 0.05);
 }
 
@@ -135,14 +153,11 @@ TEST(ProxyShape, TwoNearbySpheresStayApart) {
   expect_within_strokes(m, 0.05);
 }
 
-// The smoother weight of the ladder melts legs, seat and back into one block (its faces far from
-// every stroke); the proxy keeps the less smooth solve.
-TEST(ProxyShape, ChairLegsStayApart) {
+// Between the legs, below the seat (+y up), the proxy is empty, as the truth is, and little of its
+// surface is far from every stroke.
+void expect_legs_apart(const SynthOptions& style) {
   const testing::TruthShape chair = testing::truth_shape("chair");
-  Made m;
-  m.sketch = synthesize_sketch(chair.mesh);
-  m.proxy = make_proxy(m.sketch, {}, {}, &m.report);
-  // Between the legs, below the seat: the truth is empty there (+y up); so must the proxy be.
+  const Made m = proxy_of("chair", style);
   BoundingBox legs;
   for (const auto v : chair.mesh.vertices()) legs.extend(to_eigen(chair.mesh.point(v)));
   const double height = legs.max.y() - legs.min.y();
@@ -152,8 +167,17 @@ TEST(ProxyShape, ChairLegsStayApart) {
     EXPECT_LT(winding_number(chair.mesh, under), 0.5) << "the truth is empty at height " << t;
     EXPECT_LT(winding_number(m.proxy, under), 0.5) << "legs webbed at height " << t;
   }
+  EXPECT_LT(m.report.far_area, 0.05);
   expect_within_strokes(m, 0.05);
 }
+
+// The smoother weight of the ladder melts legs, seat and back into one block (its faces far from
+// every stroke); the proxy keeps the less smooth solve.
+TEST(ProxyShape, ChairLegsStayApart) { expect_legs_apart({}); }
+
+// Drawn mid-air (seed 2), the ladder's second weight webs a leg to the seat (9% of the surface far
+// from every stroke); the least smoothed solve keeps them apart.
+TEST(ProxyShape, ChairDrawnInVrLegsStayApart) { expect_legs_apart(vr_style(2)); }
 
 TEST(ProxyShape, WineglassFootEndsAtItsRim) {
   // The foot is a disc of radius 0.26 about the y axis (y from -0.5 to -0.45), drawn by its rim and
