@@ -625,17 +625,15 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     r.polygonize_seconds += seconds_since(t);
     return c;
   };
-  // The first weight whose zero set closes within the strokes' extent (else the largest tried),
-  // unless a smaller one has clearly less surface far from every stroke (but not most of it: then
-  // the strokes frame no surface either way) and not many more handles. More smoothing pulls in a
-  // zero set that runs out as a sheet and closes the windows that a less smooth one opens through
-  // thin double walls (a mug's, a shell's), but where the strokes depict thin parts (a chair's
-  // legs, seat and back, a lamp's arm) it melts them into a block whose faces lie far from every
-  // stroke.
-  // The ladder's first weight is solved only when the second's surface has at least far_tie of
-  // its area far from every stroke (else the first could not be kept): less smoothing keeps a
-  // mug's handle and a chair's legs apart where more smoothing webs them to the body, but most
-  // sketches need the smoothing that the second weight gives.
+  // From the ladder's second weight, the first whose zero set closes within the strokes' extent
+  // (else the largest tried), unless a smaller one has clearly less surface far from every stroke
+  // (but not most of it: then the strokes frame no surface either way) and not many more handles.
+  // More smoothing pulls in a zero set that runs out as a sheet and closes the windows that a less
+  // smooth one opens through thin double walls (a mug's, a shell's), but where the strokes depict
+  // thin parts (a chair's legs, seat and back, a lamp's arm, a mug's handle) it melts them into a
+  // block or webs them to the body, with faces far from every stroke. The ladder's first weight is
+  // solved only when the second's surface has at least far_tie of its area far (else the first
+  // could not be kept): most sketches need the second's smoothing.
   const std::vector<double> ladder = lambda_ladder(options);
   Candidate kept;
   const auto consider = [&](Candidate c) {
