@@ -95,9 +95,10 @@ ProxyRow proxy_row(const Sketch& sketch, const TriMesh& truth, const Params& par
                      eval.completeness.median, eval.completeness.p95, shape.outside_box, seconds,
                      truth_topology.genus == report.topology.genus &&
                          truth_topology.components == report.topology.components};
-  std::cout << report.lambda << " | " << pct(report.far_area) << "% | " << report.windows << " | " << pct(row.median) << " | " << pct(row.p95) << " | "
-            << pct(row.max) << " | " << pct(row.complete_median) << " | " << pct(row.complete_p95)
-            << " | " << truth_topology.genus << "/" << report.topology.genus << " | "
+  std::cout << report.lambda << " | " << pct(report.far_area) << "% | " << report.windows << " | "
+            << pct(row.median) << " | " << pct(row.p95) << " | " << pct(row.max) << " | "
+            << pct(row.complete_median) << " | " << pct(row.complete_p95) << " | "
+            << truth_topology.genus << "/" << report.topology.genus << " | "
             << truth_topology.components << "/" << report.topology.components << " | "
             << pct(row.outside) << "% | ";
   std::printf("%.1f |\n", seconds);
