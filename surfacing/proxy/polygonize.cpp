@@ -144,7 +144,7 @@ class Polygonizer {
   }
 
   // Marching tetrahedra over the crossed cells.
-  TriMesh triangulate(const std::vector<Key>& active) {
+  TriangleArrays triangulate(const std::vector<Key>& active) {
     for (Key cell : active)
       for (const auto& tet : kTets) {
         std::array<Key, 4> v;
@@ -169,13 +169,14 @@ class Polygonizer {
           triangle({ik, jl, jk}, outward);
         }
       }
-    Eigen::MatrixX3d V(static_cast<Eigen::Index>(positions_.size()), 3);
+    TriangleArrays out;
+    out.V.resize(static_cast<Eigen::Index>(positions_.size()), 3);
     for (std::size_t i = 0; i < positions_.size(); ++i)
-      V.row(static_cast<Eigen::Index>(i)) = positions_[i].transpose();
-    Eigen::MatrixX3i F(static_cast<Eigen::Index>(faces_.size()), 3);
+      out.V.row(static_cast<Eigen::Index>(i)) = positions_[i].transpose();
+    out.F.resize(static_cast<Eigen::Index>(faces_.size()), 3);
     for (std::size_t i = 0; i < faces_.size(); ++i)
-      F.row(static_cast<Eigen::Index>(i)) << faces_[i][0], faces_[i][1], faces_[i][2];
-    return mesh_from_matrices(V, F);
+      out.F.row(static_cast<Eigen::Index>(i)) << faces_[i][0], faces_[i][1], faces_[i][2];
+    return out;
   }
 
   std::size_t evaluations = 0;
@@ -239,6 +240,13 @@ bool PolygonizeOptions::valid(std::string* why) const {
 TriMesh polygonize(const FieldBatch& field, const Eigen::MatrixX3d& seeds, const BoundingBox& box,
                    const PolygonizeOptions& options, const Progress& progress,
                    PolygonizeSummary* summary) {
+  const TriangleArrays t = polygonize_arrays(field, seeds, box, options, progress, summary);
+  return mesh_from_matrices(t.V, t.F);
+}
+
+TriangleArrays polygonize_arrays(const FieldBatch& field, const Eigen::MatrixX3d& seeds,
+                                 const BoundingBox& box, const PolygonizeOptions& options,
+                                 const Progress& progress, PolygonizeSummary* summary) {
   std::string why;
   if (!options.valid(&why)) throw Error::usage(why);
   if (box.empty()) throw Error::usage("polygonisation box is empty");
@@ -282,13 +290,13 @@ TriMesh polygonize(const FieldBatch& field, const Eigen::MatrixX3d& seeds, const
   frontier.erase(std::unique(frontier.begin(), frontier.end()), frontier.end());
 
   const std::vector<Key> active = polygonizer.grow(std::move(frontier), progress);
-  TriMesh mesh = polygonizer.triangulate(active);
+  TriangleArrays out = polygonizer.triangulate(active);
   progress.update("polygonising", 1.0);
   if (summary) {
     summary->evaluations = polygonizer.evaluations;
     summary->active_cells = active.size();
   }
-  return mesh;
+  return out;
 }
 
 }  // namespace sketchsurf

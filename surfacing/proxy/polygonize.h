@@ -44,4 +44,16 @@ TriMesh polygonize(const FieldBatch& field, const Eigen::MatrixX3d& seeds, const
                    const PolygonizeOptions& options, const Progress& progress = {},
                    PolygonizeSummary* summary = nullptr);
 
+/// A polygonisation's vertex positions (#V x 3) and triangles (#F x 3, indices into V).
+struct TriangleArrays {
+  Eigen::MatrixX3d V;
+  Eigen::MatrixX3i F;
+};
+
+/// polygonize() without building the mesh (the same vertices and triangles, in the same order):
+/// for callers that only measure the surface, or discard most of the surfaces they make.
+TriangleArrays polygonize_arrays(const FieldBatch& field, const Eigen::MatrixX3d& seeds,
+                                 const BoundingBox& box, const PolygonizeOptions& options,
+                                 const Progress& progress = {}, PolygonizeSummary* summary = nullptr);
+
 }  // namespace sketchsurf

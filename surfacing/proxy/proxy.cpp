@@ -11,6 +11,7 @@
 #include <array>
 #include <numeric>
 #include <sstream>
+#include <unordered_map>
 #include <vector>
 
 #include "surfacing/error.h"
@@ -217,43 +218,20 @@ class ConfinedField {
   const std::vector<Bump>& bumps() const { return bumps_; }
   void set_outline(const Outline* outline) { outline_ = outline; }
 
-  // g at p (and, with `to_surface`, the Newton step that moves p onto g = 0 to first order).
-  double value(const Eigen::Vector3d& p, Eigen::Vector3d* to_surface = nullptr) const {
-    if (to_surface) to_surface->setZero();
-    double cap = -std::numeric_limits<double>::infinity();
+  // g at p and the Newton step that moves p onto g = 0 to first order (value_from() gives g
+  // alone).
+  double value(const Eigen::Vector3d& p, Eigen::Vector3d* to_surface) const {
+    to_surface->setZero();
     Eigen::Vector3d away = Eigen::Vector3d::Zero();
-    if (radius_ > 0.0) {
-      const auto [i, d2] = grid_.nearest(p, radius_ + band_);
-      if (i < 0) return band_;  // farther than radius + band from every stroke: well outside
-      const double d = std::sqrt(d2);
-      cap = d - radius_;
-      if (d > 0.0) away = (p - strokes_.row(i).transpose()) / d;
-      if (outline_) {  // beyond the outline's half-spaces
-        Eigen::Vector3d n;
-        const double beyond = outline_->value(p, to_surface ? &n : nullptr);
-        if (beyond > cap) {
-          cap = beyond;
-          away = n;
-        }
-      }
-      for (int a = 0; a < 3; ++a)  // the box's slabs: signed distance outside each face
-        for (const double side : {-1.0, 1.0}) {
-          const double wall = side * (p[a] - (side > 0 ? within_.max[a] : within_.min[a]));
-          if (wall > cap) {
-            cap = wall;
-            away = side * Eigen::Vector3d::Unit(a);
-          }
-        }
-      if (cap > band_ && !to_surface) return cap;  // outside whatever f says
-    }
-    if (!to_surface) return std::max(cap, scale_ * f_.value(p) - lowered(p, nullptr));
+    const double c = cap(p, &away);
+    if (c == kFar) return band_;
     Eigen::Vector3d g;
     const double value = f_.value_gradient(p, &g);
     Eigen::Vector3d down = Eigen::Vector3d::Zero();
     const double own = scale_ * value - (bumps_.empty() ? 0.0 : lowered(p, &down));
-    if (cap > own) {
-      *to_surface = -cap * away;
-      return cap;
+    if (c > own) {
+      *to_surface = -c * away;
+      return c;
     }
     if (!bumps_.empty()) g = scale_ * g - down;  // the gradient of own, not of f
     const double g2 = g.squaredNorm();
@@ -261,6 +239,47 @@ class ConfinedField {
     *to_surface = g2 > 0.0 ? Eigen::Vector3d(-over / g2 * g) : Eigen::Vector3d::Zero();
     return own;
   }
+
+  // The strokes' part of g at p: the largest of the offset surface's, the outline's and the box
+  // slabs' signed distances (-inf with no radius), or kFar beyond radius + band of every stroke.
+  // `away`, if given, is that distance's gradient.
+  double cap(const Eigen::Vector3d& p, Eigen::Vector3d* away) const {
+    if (!(radius_ > 0.0)) return -std::numeric_limits<double>::infinity();
+    const auto [i, d2] = grid_.nearest(p, radius_ + band_);
+    if (i < 0) return kFar;
+    const double d = std::sqrt(d2);
+    double c = d - radius_;
+    if (away && d > 0.0) *away = (p - strokes_.row(i).transpose()) / d;
+    if (outline_) {  // beyond the outline's half-spaces
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      const double beyond = outline_->value(p, away ? &n : nullptr);
+      if (beyond > c) {
+        c = beyond;
+        if (away) *away = n;
+      }
+    }
+    for (int a = 0; a < 3; ++a)  // the box's slabs: signed distance outside each face
+      for (const double side : {-1.0, 1.0}) {
+        const double wall = side * (p[a] - (side > 0 ? within_.max[a] : within_.min[a]));
+        if (wall > c) {
+          c = wall;
+          if (away) *away = side * Eigen::Vector3d::Unit(a);
+        }
+      }
+    return c;
+  }
+  // True when g at a point whose cap is `c` does not depend on f: outside whatever f says.
+  bool outside(double c) const { return c > band_; }
+  // g at p from its cap `c` and s f there (`sf`, unused when outside(c)).
+  double value_from(const Eigen::Vector3d& p, double c, double sf) const {
+    if (c == kFar) return band_;
+    if (outside(c)) return c;
+    return std::max(c, sf - lowered(p, nullptr));
+  }
+  // s f at p.
+  double scaled(const Eigen::Vector3d& p) const { return scale_ * f_.value(p); }
+
+  static constexpr double kFar = std::numeric_limits<double>::infinity();
 
  private:
   const HermiteRbf& f_;
@@ -278,6 +297,62 @@ class ConfinedField {
     for (const Bump& b : bumps_) sum += b.value(p, gradient);
     return sum;
   }
+};
+
+// Values of a function at the vertices of one polygonisation grid (origin, spacing h), kept
+// between polygonisations on that grid: every solve's confined field has the same strokes' part,
+// and one solve's plain, bumped and cut fields the same s f. Only unknown values are computed.
+class GridMemo {
+ public:
+  GridMemo(const Eigen::Vector3d& origin, double h) : origin_(origin), h_(h) {}
+
+  // fn(row of p) for every row of `p` into `out`; fn runs on `threads` threads, only for rows
+  // where `wanted` (when given) is true, and only for grid vertices not seen before (and points
+  // off the grid's vertices, such as the polygonisation box's corners, which are not kept).
+  template <class Fn>
+  void values(const Eigen::MatrixX3d& p, const std::vector<char>* wanted, unsigned threads,
+              Eigen::VectorXd& out, Fn&& fn) {
+    const auto rows = static_cast<std::size_t>(p.rows());
+    out.resize(p.rows());
+    std::vector<std::uint64_t> keys(rows);
+    std::vector<std::size_t> unknown;
+    for (std::size_t i = 0; i < rows; ++i) {
+      if (wanted && !(*wanted)[i]) continue;
+      keys[i] = key(p.row(static_cast<Eigen::Index>(i)).transpose());
+      const auto it = known_.find(keys[i]);
+      if (keys[i] != kOffGrid && it != known_.end())
+        out[static_cast<Eigen::Index>(i)] = it->second;
+      else
+        unknown.push_back(i);
+    }
+    constexpr std::size_t kChunk = 64;
+    parallel_for(0, (unknown.size() + kChunk - 1) / kChunk, threads, [&](std::size_t c) {
+      for (std::size_t k = c * kChunk; k < std::min(unknown.size(), (c + 1) * kChunk); ++k) {
+        const auto i = static_cast<Eigen::Index>(unknown[k]);
+        out[i] = fn(Eigen::Vector3d(p.row(i).transpose()));
+      }
+    });
+    for (const std::size_t i : unknown)
+      if (keys[i] != kOffGrid) known_.emplace(keys[i], out[static_cast<Eigen::Index>(i)]);
+  }
+
+ private:
+  static constexpr std::uint64_t kOffGrid = ~std::uint64_t{0};
+
+  // The vertex's index triple packed in 21 bits each; kOffGrid for a point off the vertices.
+  std::uint64_t key(const Eigen::Vector3d& p) const {
+    std::uint64_t k = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double t = (p[a] - origin_[a]) / h_, i = std::round(t);
+      if (!(std::abs(t - i) < 1e-6 && i >= 0.0 && i < 0x1FFFFF)) return kOffGrid;
+      k = (k << 21) | static_cast<std::uint64_t>(i);
+    }
+    return k;
+  }
+
+  Eigen::Vector3d origin_;
+  double h_;
+  std::unordered_map<std::uint64_t, double> known_;
 };
 
 // The factor that turns f into a distance to first order near the samples, positive outside:
@@ -312,9 +387,9 @@ double distance_scale(const HermiteRbf& f, const Eigen::MatrixX3d& samples, cons
 
 // Removes the connected components whose area is below `min_fraction` of the whole: specks of
 // VIPSS's inside cut off by the confinement (a bubble between two strokes), not parts of the object.
-void drop_specks(TriMesh& mesh, double min_fraction) {
-  const Eigen::MatrixX3d V = vertex_matrix(mesh);
-  const Eigen::MatrixX3i F = face_matrix(mesh);
+void drop_specks(TriangleArrays& mesh, double min_fraction) {
+  const Eigen::MatrixX3d& V = mesh.V;
+  const Eigen::MatrixX3i& F = mesh.F;
   const std::vector<int> part = vertex_components(F, V.rows());
   const auto find = [&](int v) { return part[static_cast<std::size_t>(v)]; };
   std::vector<double> area(part.size(), 0.0);
@@ -344,18 +419,54 @@ void drop_specks(TriMesh& mesh, double min_fraction) {
     if (index[v] >= 0) W.row(index[v]) = V.row(static_cast<Eigen::Index>(v));
   for (Eigen::Index f = 0; f < G.rows(); ++f)
     for (int k = 0; k < 3; ++k) G(f, k) = index[G(f, k)];
-  mesh = mesh_from_matrices(W, G);
+  mesh.V = std::move(W);
+  mesh.F = std::move(G);
+}
+
+// Components and genus of a closed mesh given as arrays (a polygonisation: closed and manifold,
+// so no border loops), as mesh_topology() counts them.
+MeshTopology closed_topology(const TriangleArrays& mesh) {
+  MeshTopology t;
+  const std::vector<int> part = vertex_components(mesh.F, mesh.V.rows());
+  std::vector<std::array<int, 2>> edges;
+  edges.reserve(static_cast<std::size_t>(3 * mesh.F.rows()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  // Per component (keyed by its lowest vertex): V, E, F.
+  const std::size_t n = part.size();
+  std::vector<long> v(n, 0), e(n, 0), f(n, 0);
+  std::vector<char> used(n, 0);
+  for (Eigen::Index i = 0; i < mesh.F.rows(); ++i) {
+    ++f[static_cast<std::size_t>(part[static_cast<std::size_t>(mesh.F(i, 0))])];
+    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(mesh.F(i, k))] = 1;
+  }
+  for (const auto& [a, b] : edges) ++e[static_cast<std::size_t>(part[static_cast<std::size_t>(a)])];
+  for (std::size_t i = 0; i < n; ++i)
+    if (used[i]) ++v[static_cast<std::size_t>(part[i])];
+  for (std::size_t r = 0; r < n; ++r) {
+    if (v[r] == 0) continue;
+    ++t.components;
+    const long chi = v[r] - e[r] + f[r];
+    t.euler += chi;
+    t.genus += (2 - chi) / 2;
+  }
+  return t;
 }
 
 // Area fraction of `mesh` whose faces' centroids lie farther than `distance` from every point of
 // `strokes` (a grid over the stroke points).
-double far_fraction(const TriMesh& mesh, const PointGrid& strokes, double distance) {
+double far_fraction(const TriangleArrays& mesh, const PointGrid& strokes, double distance) {
   double far = 0.0, total = 0.0;
-  for (const auto f : mesh.faces()) {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (const auto v : f.vertices()) centroid += to_eigen(mesh.point(v));
-    centroid /= 3.0;
-    const double area = mesh.calc_face_area(f);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
+                          c = mesh.V.row(mesh.F(f, 2));
+    const Eigen::Vector3d centroid = (a + b + c) / 3.0;
+    const double area = 0.5 * (b - a).cross(c - a).norm();
     total += area;
     if (strokes.nearest(centroid, distance).second > distance * distance) far += area;
   }
@@ -547,28 +658,35 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   struct Candidate {
     std::unique_ptr<VipssResult> vipss;  // on the heap: `field` refers to its function
     std::unique_ptr<ConfinedField> field;
-    TriMesh mesh;
+    std::unique_ptr<GridMemo> rbf;  // s f at the grid's vertices
+    TriangleArrays mesh;
     double lambda = 0.0, far = 0.0;
     long genus = 0;
     std::size_t components = 0, evaluations = 0;
     std::size_t windows = 0, bridges = 0;  // bumps kept
   };
-  // The zero set of g, polygonised; specks dropped.
-  const auto polygonise = [&](const ConfinedField& g, TriMesh& mesh, std::size_t& evaluations) {
+  // The strokes' part of every field without the outline cut: the same for every solve.
+  GridMemo caps(box.min, options.cell);
+  // The zero set of g, polygonised (values from the memos of its strokes' part and of its s f);
+  // specks dropped.
+  const auto polygonise = [&](const ConfinedField& g, GridMemo& g_caps, GridMemo& rbf,
+                              TriangleArrays& mesh, std::size_t& evaluations) {
     const FieldBatch field = [&](const Eigen::MatrixX3d& p, Eigen::VectorXd& values) {
+      Eigen::VectorXd c, sf;
+      g_caps.values(p, nullptr, threads, c, [&](const Eigen::Vector3d& x) { return g.cap(x, nullptr); });
+      std::vector<char> wanted(static_cast<std::size_t>(p.rows()));
+      for (Eigen::Index i = 0; i < p.rows(); ++i) wanted[static_cast<std::size_t>(i)] = !g.outside(c[i]);
+      rbf.values(p, &wanted, threads, sf,
+                 [&](const Eigen::Vector3d& x) { return g.scaled(x); });
       values.resize(p.rows());
-      const auto rows = static_cast<std::size_t>(p.rows());
-      parallel_for(0, (rows + kChunk - 1) / kChunk, threads, [&](std::size_t k) {
-        for (std::size_t i = k * kChunk; i < std::min(rows, (k + 1) * kChunk); ++i)
-          values[static_cast<Eigen::Index>(i)] =
-              g.value(p.row(static_cast<Eigen::Index>(i)).transpose());
-      });
+      for (Eigen::Index i = 0; i < p.rows(); ++i)
+        values[i] = g.value_from(p.row(i).transpose(), c[i], sf[i]);
     };
     PolygonizeSummary poly_summary;
-    mesh = polygonize(field, samples, box, poly, progress, &poly_summary);
+    mesh = polygonize_arrays(field, samples, box, poly, progress, &poly_summary);
     evaluations += poly_summary.evaluations;
-    if (mesh.n_faces() > 0) drop_specks(mesh, options.min_component);
-    return mesh_topology(mesh);
+    if (mesh.F.rows() > 0) drop_specks(mesh, options.min_component);
+    return closed_topology(mesh);
   };
   SaddleSearch search;
   search.near = 10.0 * options.cell;
@@ -590,7 +708,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                                               distance_scale(c.vipss->function, samples, box),
                                               stroke_points, stroke_grid, r.confine_radius, within,
                                               2.0 * options.cell);
-    MeshTopology topology = polygonise(*c.field, c.mesh, c.evaluations);
+    c.rbf = std::make_unique<GridMemo>(box.min, options.cell);
+    MeshTopology topology = polygonise(*c.field, caps, *c.rbf, c.mesh, c.evaluations);
     // Saddles searched on a grid of two cells within ten cells of a stroke: a window lies on a
     // wall between strokes, a gap between two parts a stroke runs across, a few cells from them.
     SaddleSearch here = search;
@@ -605,9 +724,9 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       std::vector<Bump> all = c.field->bumps();
       all.insert(all.end(), bumps.begin(), bumps.end());
       bumped->set_bumps(std::move(all));
-      TriMesh mesh;
-      const MeshTopology with = polygonise(*bumped, mesh, c.evaluations);
-      if (mesh.n_faces() == 0 || with.components > topology.components ||
+      TriangleArrays mesh;
+      const MeshTopology with = polygonise(*bumped, caps, *c.rbf, mesh, c.evaluations);
+      if (mesh.F.rows() == 0 || with.components > topology.components ||
           (removes_handles && with.genus >= topology.genus))
         return false;
       c.field = std::move(bumped);
@@ -617,7 +736,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     };
     if (try_bumps(saddles.windows, true)) c.windows = saddles.windows.size();
     if (try_bumps(saddles.bridges, false)) c.bridges = saddles.bridges.size();
-    if (c.mesh.n_faces() > 0) {
+    if (c.mesh.F.rows() > 0) {
       c.far = far_fraction(c.mesh, stroke_grid, options.far_distance);
       c.genus = topology.genus;
       c.components = topology.components;
@@ -639,34 +758,34 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   const auto consider = [&](Candidate c) {
     const bool kept_better = kept.far + options.far_tie <= c.far && kept.far <= options.far_most &&
                              kept.genus <= c.genus + options.far_extra_genus;
-    if (kept.mesh.n_faces() == 0 || (c.mesh.n_faces() > 0 && !kept_better)) kept = std::move(c);
+    if (kept.mesh.F.rows() == 0 || (c.mesh.F.rows() > 0 && !kept_better)) kept = std::move(c);
   };
   for (std::size_t i = ladder.size() > 1 ? 1 : 0; i < ladder.size(); ++i) {
     Candidate c = solve(ladder[i]);
     const bool closed = c.vipss->summary.closed;
-    if (i == 1 && c.mesh.n_faces() > 0 && c.far >= options.far_tie) consider(solve(ladder[0]));
+    if (i == 1 && c.mesh.F.rows() > 0 && c.far >= options.far_tie) consider(solve(ladder[0]));
     consider(std::move(c));
     if (closed) break;
   }
   // The outline cut, where the strokes frame a surface (a sketch whose surface lies mostly far
   // from every stroke, a flower's petals, is left whole: cut, it falls apart into pieces that no
   // longer show that it depicts no surface). Kept when it adds no handle and splits nothing.
-  const auto crosses_outline = [&](const TriMesh& mesh) {
-    std::vector<char> beyond(mesh.n_vertices(), 0);
-    parallel_for(0, mesh.n_vertices(), threads, [&](std::size_t v) {
-      beyond[v] = outline.value(to_eigen(mesh.point(TriMesh::VertexHandle(static_cast<int>(v)))),
-                                nullptr) > 0.0;
+  const auto crosses_outline = [&](const TriangleArrays& mesh) {
+    std::vector<char> beyond(static_cast<std::size_t>(mesh.V.rows()), 0);
+    parallel_for(0, beyond.size(), threads, [&](std::size_t v) {
+      beyond[v] = outline.value(mesh.V.row(static_cast<Eigen::Index>(v)).transpose(), nullptr) > 0.0;
     });
     return std::find(beyond.begin(), beyond.end(), 1) != beyond.end();
   };
-  if (outline.grid && kept.mesh.n_faces() > 0 && kept.far <= options.outline_most &&
+  if (outline.grid && kept.mesh.F.rows() > 0 && kept.far <= options.outline_most &&
       crosses_outline(kept.mesh)) {
     const auto t = Clock::now();
     auto cut = std::make_unique<ConfinedField>(*kept.field);
     cut->set_outline(&outline);
-    TriMesh mesh;
-    const MeshTopology topology = polygonise(*cut, mesh, kept.evaluations);
-    if (mesh.n_faces() > 0 && topology.genus <= kept.genus && topology.components <= kept.components) {
+    TriangleArrays mesh;
+    GridMemo cut_caps(box.min, options.cell);
+    const MeshTopology topology = polygonise(*cut, cut_caps, *kept.rbf, mesh, kept.evaluations);
+    if (mesh.F.rows() > 0 && topology.genus <= kept.genus && topology.components <= kept.components) {
       kept.field = std::move(cut);
       kept.mesh = std::move(mesh);
       r.outline_cut = true;
@@ -679,9 +798,9 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.far_area = kept.far;
   r.vipss = kept.vipss->summary;
   r.evaluations = kept.evaluations;
-  TriMesh mesh = std::move(kept.mesh);
-  if (mesh.n_faces() == 0)
+  if (kept.mesh.F.rows() == 0)
     throw Error::processing("VIPSS found no closed surface through the strokes");
+  TriMesh mesh = mesh_from_matrices(kept.mesh.V, kept.mesh.F);
   const ConfinedField& g = *kept.field;
 
   t0 = Clock::now();

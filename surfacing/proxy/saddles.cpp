@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <vector>
+
+#include "surfacing/parallel.h"
 
 namespace sketchsurf {
 
@@ -35,12 +38,17 @@ class SearchGrid {
     const Eigen::Vector3d extent = box.max - box.min;
     for (int a = 0; a < 3; ++a) n_[a] = static_cast<int>(std::ceil(extent[a] / h_)) + 1;
     count_ = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
-    std::vector<std::size_t> near_ids;
-    for (int k = 0; k < n_[2]; ++k)
+    // The points near a stroke, slice by slice (in parallel), in increasing id.
+    std::vector<std::vector<std::size_t>> slices(static_cast<std::size_t>(n_[2]));
+    parallel_for(0, slices.size(), threads, [&](std::size_t kk) {
+      const int k = static_cast<int>(kk);
       for (int j = 0; j < n_[1]; ++j)
         for (int i = 0; i < n_[0]; ++i)
           if (strokes.nearest(point(i, j, k), search.near).first >= 0)
-            near_ids.push_back(id(i, j, k));
+            slices[kk].push_back(id(i, j, k));
+    });
+    std::vector<std::size_t> near_ids;
+    for (const auto& slice : slices) near_ids.insert(near_ids.end(), slice.begin(), slice.end());
     Eigen::MatrixX3d points(static_cast<Eigen::Index>(near_ids.size()), 3);
     for (std::size_t r = 0; r < near_ids.size(); ++r) {
       const std::size_t q = near_ids[r];
