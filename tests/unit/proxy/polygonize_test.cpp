@@ -103,6 +103,32 @@ TEST(Polygonize, SurfaceLeavingTheBoxIsClosedByIt) {
   EXPECT_EQ(t.genus, 0);
 }
 
+TEST(Polygonize, ArraysHoldTheMeshsVerticesAndTrianglesInOrder) {
+  auto torus = [](const Eigen::Vector3d& p) {
+    return std::hypot(std::hypot(p.x(), p.y()) - 0.4, p.z()) - 0.15;
+  };
+  Eigen::MatrixX3d seeds(1, 3);
+  seeds << 0.55, 0, 0;
+  PolygonizeOptions options;
+  options.cell_size = 0.03;
+  PolygonizeSummary from_arrays, from_mesh;
+  const TriangleArrays arrays =
+      polygonize_arrays(batch(torus), seeds, cube(0.7), options, {}, &from_arrays);
+  const TriMesh mesh = polygonize(batch(torus), seeds, cube(0.7), options, {}, &from_mesh);
+  EXPECT_EQ(from_arrays.evaluations, from_mesh.evaluations);
+  ASSERT_GT(arrays.F.rows(), 0);
+  EXPECT_EQ(arrays.V, vertex_matrix(mesh));
+  const Eigen::MatrixX3i F = face_matrix(mesh);
+  ASSERT_EQ(F.rows(), arrays.F.rows());
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {  // the same triangle, up to where it starts
+    bool same = false;
+    for (int k = 0; k < 3; ++k)
+      same |= F(f, 0) == arrays.F(f, k) && F(f, 1) == arrays.F(f, (k + 1) % 3) &&
+              F(f, 2) == arrays.F(f, (k + 2) % 3);
+    EXPECT_TRUE(same) << "triangle " << f;
+  }
+}
+
 TEST(Polygonize, RejectsBadOptions) {
   PolygonizeOptions bad;
   bad.cell_size = 0;
