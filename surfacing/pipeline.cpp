@@ -102,6 +102,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.window_reach", setter([](Params& p) -> auto& { return p.proxy.window_reach; })},
       {"proxy.window_points", setter([](Params& p) -> auto& { return p.proxy.window_points; })},
       {"proxy.bridge_value", setter([](Params& p) -> auto& { return p.proxy.bridge_value; })},
+      {"proxy.neck_value", setter([](Params& p) -> auto& { return p.proxy.neck_value; })},
       {"proxy.min_component", setter([](Params& p) -> auto& { return p.proxy.min_component; })},
       {"proxy.vipss_tolerance", setter([](Params& p) -> auto& { return p.proxy.vipss_tolerance; })},
       {"proxy.vipss_remesh_iterations", setter([](Params& p) -> auto& { return p.proxy.vipss_remesh_iterations; })},

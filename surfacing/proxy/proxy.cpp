@@ -29,6 +29,8 @@ namespace sketchsurf {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// The most area a neck cut may lose (the neck's own surface; more: it cut off a part).
+constexpr double kNeckLoss = 0.03;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -458,6 +460,16 @@ MeshTopology closed_topology(const TriangleArrays& mesh) {
   return t;
 }
 
+double surface_area(const TriangleArrays& mesh) {
+  double total = 0.0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
+                          c = mesh.V.row(mesh.F(f, 2));
+    total += 0.5 * (b - a).cross(c - a).norm();
+  }
+  return total;
+}
+
 // Area fraction of `mesh` whose faces' centroids lie farther than `distance` from every point of
 // `strokes` (a grid over the stroke points).
 double far_fraction(const TriangleArrays& mesh, const PointGrid& strokes, double distance) {
@@ -560,6 +572,7 @@ bool ProxyOptions::valid(std::string* why) const {
     return fail("proxy window_points must be in [0, 100000]");
   if (!(bridge_value >= 0.0 && bridge_value < 0.5))
     return fail("proxy bridge_value must be in [0, 0.5)");
+  if (!(neck_value >= 0.0 && neck_value < 0.5)) return fail("proxy neck_value must be in [0, 0.5)");
   if (!(min_component >= 0.0 && min_component < 1.0))
     return fail("proxy min_component must be in [0, 1)");
   if (projection_steps < 0) return fail("proxy projection_steps must be >= 0");
@@ -663,7 +676,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     double lambda = 0.0, far = 0.0;
     long genus = 0;
     std::size_t components = 0, evaluations = 0;
-    std::size_t windows = 0, bridges = 0;  // bumps kept
+    std::size_t windows = 0, bridges = 0, necks = 0;  // bumps kept
   };
   // The strokes' part of every field without the outline cut: the same for every solve.
   GridMemo caps(box.min, options.cell);
@@ -695,6 +708,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   search.window_reach = options.window_reach;
   search.window_points = options.window_points;
   search.bridge_most = options.bridge_value;
+  search.neck_most = options.neck_value;
   const auto solve = [&](double lambda) {
     auto t = Clock::now();
     Candidate c;
@@ -717,8 +731,11 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     const Saddles saddles = find_saddles(c.vipss->function, c.field->scale(), unit, stroke_grid,
                                          box, here, threads);
     // Windows closed where that removes handles without splitting the surface; then bridges
-    // built where that splits nothing (a bridge adds a handle or joins two parts).
-    const auto try_bumps = [&](const std::vector<Bump>& bumps, bool removes_handles) {
+    // built where that splits nothing (a bridge adds a handle or joins two parts); then necks cut
+    // where that splits the surface or removes handles, adds none, and loses no part (at most
+    // kNeckLoss of the area: more, and a part fell away as a speck).
+    enum class Kind { kWindows, kBridges, kNecks };
+    const auto try_bumps = [&](const std::vector<Bump>& bumps, Kind kind) {
       if (bumps.empty()) return false;
       auto bumped = std::make_unique<ConfinedField>(*c.field);
       std::vector<Bump> all = c.field->bumps();
@@ -726,16 +743,24 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       bumped->set_bumps(std::move(all));
       TriangleArrays mesh;
       const MeshTopology with = polygonise(*bumped, caps, *c.rbf, mesh, c.evaluations);
-      if (mesh.F.rows() == 0 || with.components > topology.components ||
-          (removes_handles && with.genus >= topology.genus))
+      if (mesh.F.rows() == 0) return false;
+      if (kind == Kind::kNecks) {
+        if (with.genus > topology.genus ||
+            !(with.components > topology.components || with.genus < topology.genus) ||
+            surface_area(mesh) < (1.0 - kNeckLoss) * surface_area(c.mesh))
+          return false;
+      } else if (with.components > topology.components ||
+                 (kind == Kind::kWindows && with.genus >= topology.genus)) {
         return false;
+      }
       c.field = std::move(bumped);
       c.mesh = std::move(mesh);
       topology = with;
       return true;
     };
-    if (try_bumps(saddles.windows, true)) c.windows = saddles.windows.size();
-    if (try_bumps(saddles.bridges, false)) c.bridges = saddles.bridges.size();
+    if (try_bumps(saddles.windows, Kind::kWindows)) c.windows = saddles.windows.size();
+    if (try_bumps(saddles.bridges, Kind::kBridges)) c.bridges = saddles.bridges.size();
+    if (try_bumps(saddles.necks, Kind::kNecks)) c.necks = saddles.necks.size();
     if (c.mesh.F.rows() > 0) {
       c.far = far_fraction(c.mesh, stroke_grid, options.far_distance);
       c.genus = topology.genus;
@@ -795,6 +820,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.lambda = kept.lambda;
   r.windows = kept.windows;
   r.bridges = kept.bridges;
+  r.necks = kept.necks;
   r.far_area = kept.far;
   r.vipss = kept.vipss->summary;
   r.evaluations = kept.evaluations;

@@ -86,6 +86,12 @@ struct ProxyOptions {
                                 ///< across it; 0 = off) are bridged where a stroke crosses the gap
                                 ///< outside the surface: the strokes depict a connection there (a
                                 ///< handle's end drawn onto the wall). Kept when it splits nothing
+  double neck_value = 0.02;     ///< thin connections between two parts of the surface (saddles
+                                ///< inside it with a value in (-neck_value, 0), a maximum along
+                                ///< the neck and a minimum across it; 0 = off) are cut where no
+                                ///< stroke crosses the neck: two parts drawn apart that VIPSS
+                                ///< merged. Kept when it splits the surface or removes handles
+                                ///< and loses no part
   double min_component = 0.01;  ///< parts of the polygonised surface with less than this fraction
                                 ///< of its area are dropped (specks the confinement cuts off)
   double vipss_tolerance = 1e-7;  ///< L-BFGS relative energy change at which the normals are
@@ -148,6 +154,7 @@ struct ProxyReport {
   bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
   std::size_t windows = 0;        ///< automatic proxy: membrane bumps closing windows
   std::size_t bridges = 0;        ///< automatic proxy: gaps bridged
+  std::size_t necks = 0;          ///< automatic proxy: necks cut
   std::size_t vipss_solves = 0;   ///< automatic proxy: smoothing weights tried
   std::size_t evaluations = 0;    ///< implicit-function evaluations by the polygoniser
   std::size_t anchors = 0;        ///< user proxy: vertices pulled to strokes

@@ -112,8 +112,9 @@ struct Saddle {
 };
 
 // The grid points where the central-difference gradient norm of s f is a local minimum below
-// 0.8 among the 26 neighbours outside the surface, with a value in (0, most).
-std::vector<std::array<int, 3>> candidates(const SearchGrid& grid, double most) {
+// 0.8 among the 26 neighbours on their side of the surface, with a value in (0, most) (side +1,
+// outside) or (-most, 0) (side -1, inside).
+std::vector<std::array<int, 3>> candidates(const SearchGrid& grid, double most, int side) {
   const auto& n = grid.size();
   const double h = grid.step();
   std::vector<double> slope(grid.count(), kUnknown);
@@ -133,14 +134,14 @@ std::vector<std::array<int, 3>> candidates(const SearchGrid& grid, double most) 
   for (int k = 1; k + 1 < n[2]; ++k)
     for (int j = 1; j + 1 < n[1]; ++j)
       for (int i = 1; i + 1 < n[0]; ++i) {
-        const double v = at(i, j, k), g = slope[grid.id(i, j, k)];
+        const double v = side * at(i, j, k), g = slope[grid.id(i, j, k)];
         if (!(v > 0.0 && v < most && g < 0.8)) continue;
         bool minimum = true;
         for (int c = -1; c <= 1 && minimum; ++c)
           for (int b = -1; b <= 1 && minimum; ++b)
             for (int a = -1; a <= 1 && minimum; ++a)
               if ((a || b || c) && inner(i + a, j + b, k + c) &&
-                  at(i + a, j + b, k + c) > 0.0)
+                  side * at(i + a, j + b, k + c) > 0.0)
                 minimum = !(slope[grid.id(i + a, j + b, k + c)] < g);
         if (minimum) out.push_back({i, j, k});
       }
@@ -256,13 +257,11 @@ void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& s
   }
 }
 
-// The bridge over a gap saddle when strokes cross the gap's mid-plane (through the saddle, normal
-// to its negative curvature) within 2.5 h of it at least h / 2 outside the surface: a ball twice
-// as wide as the farthest such crossing that lowers s f there below zero. False when none crosses.
-bool bridge(const SearchGrid& grid, const Saddle& s, const Sketch& unit, Bump& out) {
-  const double h = grid.step(), reach = 2.5 * h;
+// Where the strokes cross the plane through the saddle normal to its negative curvature (a gap's
+// or a neck's mid-plane).
+std::vector<Eigen::Vector3d> mid_plane_crossings(const Saddle& s, const Sketch& unit) {
   const Eigen::Vector3d axis = s.axes.col(0);
-  double farthest = 0.0, miss = 0.0;
+  std::vector<Eigen::Vector3d> out;
   for (const Stroke& stroke : unit.strokes) {
     if (stroke.ignored) continue;
     for (std::size_t i = 1; i < stroke.points.size(); ++i) {
@@ -270,14 +269,25 @@ bool bridge(const SearchGrid& grid, const Saddle& s, const Sketch& unit, Bump& o
       const Eigen::Vector3d& b = stroke.points[i];
       const double ta = (a - s.centre).dot(axis), tb = (b - s.centre).dot(axis);
       if (ta * tb > 0.0 || ta == tb) continue;
-      const Eigen::Vector3d crossing = a + (ta / (ta - tb)) * (b - a);
-      const double r = (crossing - s.centre).norm();
-      if (r > reach) continue;
-      const double value = grid.value(crossing);
-      if (value < 0.5 * h) continue;
-      farthest = std::max(farthest, r);
-      miss = std::max(miss, value);
+      out.push_back(a + (ta / (ta - tb)) * (b - a));
     }
+  }
+  return out;
+}
+
+// The bridge over a gap saddle when strokes cross the gap's mid-plane (through the saddle, normal
+// to its negative curvature) within 2.5 h of it at least h / 2 outside the surface: a ball twice
+// as wide as the farthest such crossing that lowers s f there below zero. False when none crosses.
+bool bridge(const SearchGrid& grid, const Saddle& s, const Sketch& unit, Bump& out) {
+  const double h = grid.step(), reach = 2.5 * h;
+  double farthest = 0.0, miss = 0.0;
+  for (const Eigen::Vector3d& crossing : mid_plane_crossings(s, unit)) {
+    const double r = (crossing - s.centre).norm();
+    if (r > reach) continue;
+    const double value = grid.value(crossing);
+    if (value < 0.5 * h) continue;
+    farthest = std::max(farthest, r);
+    miss = std::max(miss, value);
   }
   if (!(miss > 0.0)) return false;
   const double radius = 2.0 * std::max(farthest, h);
@@ -288,6 +298,27 @@ bool bridge(const SearchGrid& grid, const Saddle& s, const Sketch& unit, Bump& o
   return true;
 }
 
+// The cut through a neck saddle (inside the surface, along the neck's axis a maximum of s f)
+// when no stroke crosses the neck's mid-plane (through the saddle, normal to its negative
+// curvature) within twice the neck's radius or 2 h of the saddle (a stem that VIPSS pinched
+// thinner than its strokes is still crossed by them): no stroke depicts the connection, as where
+// two parts drawn apart merge, their strokes parallel to the gap. The cut is a disc h thick across
+// the neck, twice the neck's radius in each direction (at most 5 h), that raises s f there above
+// zero.
+bool neck_cut(const Saddle& s, double h, const Sketch& unit, Bump& out) {
+  Eigen::Vector3d radii(h, 0.0, 0.0);
+  for (int a = 1; a < 3; ++a)
+    radii[a] = std::min(5.0 * h, 2.0 * std::sqrt(-2.0 * s.value / s.curvature[a]));
+  const double reach = std::max({radii[1], radii[2], 2.0 * h});
+  for (const Eigen::Vector3d& crossing : mid_plane_crossings(s, unit))
+    if ((crossing - s.centre).norm() <= reach) return false;
+  out.centre = s.centre;
+  out.axes = s.axes;
+  out.radii = radii;
+  out.depth = -(-s.value + h / 4.0) / kHalfway;
+  return true;
+}
+
 }  // namespace
 
 Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
@@ -295,12 +326,12 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
                      unsigned threads) {
   Saddles found;
   const double most = std::max(search.window_most, search.bridge_most);
-  if (!(most > 0.0)) return found;
+  if (!(most > 0.0) && !(search.neck_most > 0.0)) return found;
   const SearchGrid grid(f, scale, strokes, box, search, threads);
   const double h = grid.step();
   std::vector<char> taken(grid.count(), 0);
   std::vector<Eigen::Vector3d> seen;
-  for (const std::array<int, 3>& c : candidates(grid, most)) {
+  for (const std::array<int, 3>& c : candidates(grid, most, 1)) {
     Saddle s;
     if (!newton(grid, grid.point(c[0], c[1], c[2]), s) || !(s.value > 0.0)) continue;
     const bool window = s.value < search.window_most && s.curvature[1] < 0.0 &&
@@ -323,6 +354,20 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
       if (bridge(grid, s, unit, b)) found.bridges.push_back(b);
     }
   }
+  if (search.neck_most > 0.0)
+    for (const std::array<int, 3>& c : candidates(grid, search.neck_most, -1)) {
+      Saddle s;
+      if (!newton(grid, grid.point(c[0], c[1], c[2]), s) ||
+          !(s.value < 0.0 && s.value > -search.neck_most && s.curvature[0] < 0.0 &&
+            s.curvature[1] > 0.0))
+        continue;
+      if (std::any_of(seen.begin(), seen.end(),
+                      [&](const Eigen::Vector3d& x) { return (x - s.centre).norm() < h; }))
+        continue;
+      seen.push_back(s.centre);
+      Bump b;
+      if (neck_cut(s, h, unit, b)) found.necks.push_back(b);
+    }
   return found;
 }
 

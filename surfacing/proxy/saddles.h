@@ -1,7 +1,8 @@
 #pragma once
 // Saddles of the proxy's distance-scaled VIPSS function where its zero set has the wrong topology
-// between strokes: windows through thin double walls, to close, and gaps that strokes cross, to
-// bridge (METHOD.md section 1: the proxy should have the shape the strokes depict).
+// between strokes: windows through thin double walls, to close, gaps that strokes cross, to
+// bridge, and necks that no stroke crosses, to cut (METHOD.md section 1: the proxy should have the
+// shape the strokes depict).
 
 #include <Eigen/Core>
 #include <vector>
@@ -33,16 +34,18 @@ struct SaddleSearch {
   double window_reach = 0.6;   ///< a window's open region is flooded this far from its saddle
   int window_points = 400;     ///< at most this many membrane bumps per window
   double bridge_most = 0.025;  ///< bridges: saddle values in (0, bridge_most); 0 = none
+  double neck_most = 0.0;      ///< necks: saddle values in (-neck_most, 0); 0 = none
 };
 
 /// What find_saddles() found, as bumps to lower the field by.
 struct Saddles {
   std::vector<Bump> windows;  ///< membranes over windows through thin double walls
   std::vector<Bump> bridges;  ///< connections across gaps that strokes cross
+  std::vector<Bump> necks;    ///< cuts through thin connections that no stroke crosses
 };
 
 /// The saddles of s f (s: the factor that makes f a distance to first order, positive outside)
-/// with a small positive value, found by Newton's method from the grid points near the strokes
+/// with a small value, found by Newton's method from the grid points near the strokes
 /// where the gradient norm is a local minimum below 0.8 (a distance has gradient norm 1 but at
 /// critical points):
 /// - a window: two negative curvatures (the window's plane) and one positive (across it), as
@@ -55,6 +58,11 @@ struct Saddles {
 ///   the surface that nearly touch, kept only when a stroke crosses the gap's mid-plane near the
 ///   saddle outside the surface (the strokes depict a connection there: a mug's handle meeting
 ///   its wall). Its bump is a ball that reaches the crossing strokes.
+/// - a neck (searched from the grid points inside the surface, value in (-neck_most, 0)): one
+///   negative curvature (along the neck) and two positive, as in a thin connection between two
+///   parts, kept only when no stroke crosses the neck's mid-plane within twice its radius or 2 h
+///   (nothing depicts the connection: two parts drawn apart that VIPSS merged). Its bump raises
+///   the field over a thin disc across the neck.
 /// `unit` is the unit-diagonal sketch whose samples made f; `strokes` a grid over points along
 /// its strokes; `box` the search box.
 Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,

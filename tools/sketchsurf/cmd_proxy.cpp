@@ -57,6 +57,7 @@ nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt)
                   {"outline_cut", r.outline_cut},
                   {"window_bumps", r.windows},
                   {"bridges", r.bridges},
+                  {"necks_cut", r.necks},
                   {"confine_radius", r.confine_radius},
                   {"termination", r.vipss.termination},
                   {"evaluations", r.evaluations}};
