@@ -460,6 +460,7 @@ MeshTopology closed_topology(const TriangleArrays& mesh) {
   return t;
 }
 
+// The total area of the triangles (a neck cut that loses more than its neck cut off a part).
 double surface_area(const TriangleArrays& mesh) {
   double total = 0.0;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
