@@ -40,6 +40,11 @@ Eigen::MatrixX3i face_matrix(const TriMesh& mesh) {
   return F;
 }
 
+double triangle_area(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, Eigen::Index f) {
+  const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
 Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
   Eigen::MatrixX3d N = Eigen::MatrixX3d::Zero(V.rows(), 3);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {

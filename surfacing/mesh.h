@@ -25,6 +25,8 @@ inline OpenMesh::Vec3d to_openmesh(const Eigen::Vector3d& p) { return {p.x(), p.
 Eigen::MatrixX3d vertex_matrix(const TriMesh& mesh);
 /// Triangle vertex indices as a #F x 3 matrix.
 Eigen::MatrixX3i face_matrix(const TriMesh& mesh);
+/// The area of triangle f of F (#F x 3) over positions V.
+double triangle_area(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, Eigen::Index f);
 /// Unit vertex normals of the triangles F over positions V (#V x 3), each the sum of its triangles'
 /// normals weighted by their areas; a zero row where they cancel or no triangle has area.
 Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);

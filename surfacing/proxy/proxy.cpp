@@ -397,8 +397,7 @@ void drop_specks(TriangleArrays& mesh, double min_fraction) {
   std::vector<double> area(part.size(), 0.0);
   double total = 0.0;
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    const double fa = 0.5 * (b - a).cross(c - a).norm();
+    const double fa = triangle_area(V, F, f);
     area[find(F(f, 0))] += fa;
     total += fa;
   }
@@ -463,11 +462,7 @@ MeshTopology closed_topology(const TriangleArrays& mesh) {
 // The total area of the triangles (a neck cut that loses more than its neck cut off a part).
 double surface_area(const TriangleArrays& mesh) {
   double total = 0.0;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
-                          c = mesh.V.row(mesh.F(f, 2));
-    total += 0.5 * (b - a).cross(c - a).norm();
-  }
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) total += triangle_area(mesh.V, mesh.F, f);
   return total;
 }
 
@@ -479,7 +474,7 @@ double far_fraction(const TriangleArrays& mesh, const PointGrid& strokes, double
     const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
                           c = mesh.V.row(mesh.F(f, 2));
     const Eigen::Vector3d centroid = (a + b + c) / 3.0;
-    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double area = triangle_area(mesh.V, mesh.F, f);
     total += area;
     if (strokes.nearest(centroid, distance).second > distance * distance) far += area;
   }

@@ -112,9 +112,12 @@ struct Saddle {
 };
 
 // The grid points where the central-difference gradient norm of s f is a local minimum below
-// 0.8 among the 26 neighbours on their side of the surface, with a value in (0, most) (side +1,
-// outside) or (-most, 0) (side -1, inside).
-std::vector<std::array<int, 3>> candidates(const SearchGrid& grid, double most, int side) {
+// 0.8 among the 26 neighbours on their side of the surface, with a value in (0, outside_most)
+// (outside) or (-inside_most, 0) (inside).
+struct Candidates {
+  std::vector<std::array<int, 3>> outside, inside;
+};
+Candidates candidates(const SearchGrid& grid, double outside_most, double inside_most) {
   const auto& n = grid.size();
   const double h = grid.step();
   std::vector<double> slope(grid.count(), kUnknown);
@@ -130,12 +133,13 @@ std::vector<std::array<int, 3>> candidates(const SearchGrid& grid, double most, 
   const auto inner = [&](int i, int j, int k) {
     return i > 0 && j > 0 && k > 0 && i + 1 < n[0] && j + 1 < n[1] && k + 1 < n[2];
   };
-  std::vector<std::array<int, 3>> out;
+  Candidates out;
   for (int k = 1; k + 1 < n[2]; ++k)
     for (int j = 1; j + 1 < n[1]; ++j)
       for (int i = 1; i + 1 < n[0]; ++i) {
+        const int side = at(i, j, k) > 0.0 ? 1 : -1;
         const double v = side * at(i, j, k), g = slope[grid.id(i, j, k)];
-        if (!(v > 0.0 && v < most && g < 0.8)) continue;
+        if (!(v > 0.0 && v < (side > 0 ? outside_most : inside_most) && g < 0.8)) continue;
         bool minimum = true;
         for (int c = -1; c <= 1 && minimum; ++c)
           for (int b = -1; b <= 1 && minimum; ++b)
@@ -143,7 +147,7 @@ std::vector<std::array<int, 3>> candidates(const SearchGrid& grid, double most, 
               if ((a || b || c) && inner(i + a, j + b, k + c) &&
                   side * at(i + a, j + b, k + c) > 0.0)
                 minimum = !(slope[grid.id(i + a, j + b, k + c)] < g);
-        if (minimum) out.push_back({i, j, k});
+        if (minimum) (side > 0 ? out.outside : out.inside).push_back({i, j, k});
       }
   return out;
 }
@@ -331,7 +335,16 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
   const double h = grid.step();
   std::vector<char> taken(grid.count(), 0);
   std::vector<Eigen::Vector3d> seen;
-  for (const std::array<int, 3>& c : candidates(grid, most, 1)) {
+  // False when a saddle already taken lies within h of x; else x is taken.
+  const auto take = [&](const Eigen::Vector3d& x) {
+    if (std::any_of(seen.begin(), seen.end(),
+                    [&](const Eigen::Vector3d& y) { return (y - x).norm() < h; }))
+      return false;
+    seen.push_back(x);
+    return true;
+  };
+  const Candidates found_at = candidates(grid, most, search.neck_most);
+  for (const std::array<int, 3>& c : found_at.outside) {
     Saddle s;
     if (!newton(grid, grid.point(c[0], c[1], c[2]), s) || !(s.value > 0.0)) continue;
     const bool window = s.value < search.window_most && s.curvature[1] < 0.0 &&
@@ -339,10 +352,7 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
                         open_across(grid, s.centre, s.axes.col(2), search.across);
     const bool gap = s.value < search.bridge_most && s.curvature[0] < 0.0 && s.curvature[1] > 0.0;
     if (!window && !gap) continue;
-    if (std::any_of(seen.begin(), seen.end(),
-                    [&](const Eigen::Vector3d& x) { return (x - s.centre).norm() < h; }))
-      continue;
-    seen.push_back(s.centre);
+    if (!take(s.centre)) continue;
     if (window) {
       const std::size_t first = found.windows.size();
       found.windows.push_back(window_bump(s, h, search.across));
@@ -354,20 +364,16 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
       if (bridge(grid, s, unit, b)) found.bridges.push_back(b);
     }
   }
-  if (search.neck_most > 0.0)
-    for (const std::array<int, 3>& c : candidates(grid, search.neck_most, -1)) {
-      Saddle s;
-      if (!newton(grid, grid.point(c[0], c[1], c[2]), s) ||
-          !(s.value < 0.0 && s.value > -search.neck_most && s.curvature[0] < 0.0 &&
-            s.curvature[1] > 0.0))
-        continue;
-      if (std::any_of(seen.begin(), seen.end(),
-                      [&](const Eigen::Vector3d& x) { return (x - s.centre).norm() < h; }))
-        continue;
-      seen.push_back(s.centre);
-      Bump b;
-      if (neck_cut(s, h, unit, b)) found.necks.push_back(b);
-    }
+  for (const std::array<int, 3>& c : found_at.inside) {
+    Saddle s;
+    if (!newton(grid, grid.point(c[0], c[1], c[2]), s) ||
+        !(s.value < 0.0 && s.value > -search.neck_most && s.curvature[0] < 0.0 &&
+          s.curvature[1] > 0.0) ||
+        !take(s.centre))
+      continue;
+    Bump b;
+    if (neck_cut(s, h, unit, b)) found.necks.push_back(b);
+  }
   return found;
 }
 

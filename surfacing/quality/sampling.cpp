@@ -22,8 +22,7 @@ SurfaceSamples sample_surface(const TriMesh& mesh, std::size_t count, std::uint6
   std::vector<double> cumulative(static_cast<std::size_t>(F.rows()));
   double total = 0.0;
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    total += 0.5 * (b - a).cross(c - a).norm();
+    total += triangle_area(V, F, f);
     cumulative[static_cast<std::size_t>(f)] = total;
   }
   out.area = total;
