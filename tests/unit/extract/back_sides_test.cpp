@@ -69,7 +69,9 @@ TEST(BackSides, TheFarSideOfAThinPartIsFoundAndMovedInsideItsModel) {
       EXPECT_TRUE(is_back[v.idx()]) << "a vertex of the lower side";
       ++lower;
     }
-    if (z >= 0.0) EXPECT_FALSE(is_back[v.idx()]) << "a vertex of the upper side";
+    if (z >= 0.0) {
+      EXPECT_FALSE(is_back[v.idx()]) << "a vertex of the upper side";
+    }
   }
   EXPECT_GT(lower, 0u);
   EXPECT_TRUE(std::is_sorted(back.begin(), back.end()));
