@@ -31,6 +31,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 // The most area a neck cut may lose (the neck's own surface; more: it cut off a part).
 constexpr double kNeckLoss = 0.03;
+// The most times windows are searched again round the membranes already placed.
+constexpr int kWindowRounds = 2;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -705,6 +707,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   search.window_points = options.window_points;
   search.bridge_most = options.bridge_value;
   search.neck_most = options.neck_value;
+  search.window_aliased = 0.5 * options.cell;
   const auto solve = [&](double lambda) {
     auto t = Clock::now();
     Candidate c;
@@ -724,8 +727,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     // wall between strokes, a gap between two parts a stroke runs across, a few cells from them.
     SaddleSearch here = search;
     here.window_most = topology.genus > 0 ? options.window_value : 0.0;
-    const Saddles saddles = find_saddles(c.vipss->function, c.field->scale(), unit, stroke_grid,
-                                         box, here, threads);
+    const Saddles saddles = find_saddles(c.vipss->function, c.field->scale(), {}, unit,
+                                         stroke_grid, box, here, threads);
     // Windows closed where that removes handles without splitting the surface; then bridges
     // built where that splits nothing (a bridge adds a handle or joins two parts); then necks cut
     // where that splits the surface or removes handles, adds none, and loses no part (at most
@@ -754,7 +757,19 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       topology = with;
       return true;
     };
-    if (try_bumps(saddles.windows, Kind::kWindows)) c.windows = saddles.windows.size();
+    if (try_bumps(saddles.windows, Kind::kWindows)) {
+      c.windows = saddles.windows.size();
+      // Windows left open round the membranes (a membrane is flat; a curved wall leaves it) are
+      // saddles of the lowered field: searched again while that removes handles.
+      SaddleSearch again = here;
+      again.bridge_most = again.neck_most = 0.0;
+      for (int round = 0; round < kWindowRounds && topology.genus > 0; ++round) {
+        const Saddles more = find_saddles(c.vipss->function, c.field->scale(), c.field->bumps(),
+                                          unit, stroke_grid, box, again, threads);
+        if (!try_bumps(more.windows, Kind::kWindows)) break;
+        c.windows += more.windows.size();
+      }
+    }
     if (try_bumps(saddles.bridges, Kind::kBridges)) c.bridges = saddles.bridges.size();
     if (try_bumps(saddles.necks, Kind::kNecks)) c.necks = saddles.necks.size();
     if (c.mesh.F.rows() > 0) {

@@ -32,9 +32,10 @@ constexpr double kHalfway = 0.421875;
 // The search grid over the box: spacing h, values of s f at the points near a stroke.
 class SearchGrid {
  public:
-  SearchGrid(const HermiteRbf& f, double scale, const PointGrid& strokes, const BoundingBox& box,
-             const SaddleSearch& search, unsigned threads)
-      : f_(f), scale_(scale), box_(box), h_(search.step) {
+  SearchGrid(const HermiteRbf& f, double scale, const std::vector<Bump>& lowered,
+             const PointGrid& strokes, const BoundingBox& box, const SaddleSearch& search,
+             unsigned threads)
+      : f_(f), scale_(scale), lowered_(lowered), box_(box), h_(search.step) {
     const Eigen::Vector3d extent = box.max - box.min;
     for (int a = 0; a < 3; ++a) n_[a] = static_cast<int>(std::ceil(extent[a] / h_)) + 1;
     count_ = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
@@ -60,8 +61,10 @@ class SearchGrid {
     Eigen::VectorXd near_values;
     f.values(points, near_values, threads);
     value_.assign(count_, kUnknown);
-    for (std::size_t r = 0; r < near_ids.size(); ++r)
-      value_[near_ids[r]] = scale * near_values[static_cast<Eigen::Index>(r)];
+    parallel_for(0, near_ids.size(), threads, [&](std::size_t r) {
+      const auto i = static_cast<Eigen::Index>(r);
+      value_[near_ids[r]] = scale * near_values[i] - bumps(points.row(i).transpose(), nullptr);
+    });
   }
 
   const std::array<int, 3>& size() const { return n_; }
@@ -83,11 +86,15 @@ class SearchGrid {
   }
   double grid_value(std::size_t q) const { return value_[q]; }
 
-  // s f at x and its gradient.
+  // s f, less the bumps, at x and its gradient.
   double value_gradient(const Eigen::Vector3d& x, Eigen::Vector3d* g) const {
     const double v = scale_ * f_.value_gradient(x, g);
     *g *= scale_;
-    return v;
+    if (lowered_.empty()) return v;
+    Eigen::Vector3d down = Eigen::Vector3d::Zero();
+    const double b = bumps(x, &down);
+    *g -= down;
+    return v - b;
   }
   double value(const Eigen::Vector3d& x) const {
     Eigen::Vector3d g;
@@ -95,8 +102,16 @@ class SearchGrid {
   }
 
  private:
+  // The bumps' sum at x; their gradient is added to `gradient` (if given).
+  double bumps(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const {
+    double sum = 0.0;
+    for (const Bump& b : lowered_) sum += b.value(x, gradient);
+    return sum;
+  }
+
   const HermiteRbf& f_;
   double scale_;
+  const std::vector<Bump>& lowered_;
   BoundingBox box_;
   double h_;
   std::array<int, 3> n_{};
@@ -196,14 +211,16 @@ bool open_across(const SearchGrid& grid, const Eigen::Vector3d& x, const Eigen::
 }
 
 // The window's own bump: the hole's radius in each plane direction is sqrt(2 value / |curvature|)
-// (the saddle as a quadric); the bump covers twice that (at most 5 h), `across` across, and lowers
-// s f by value + across / 4 at the centre.
-Bump window_bump(const Saddle& s, double h, double across) {
+// (the saddle as a quadric; for a saddle just inside, value + aliased: where the polygonisation
+// can open it); the bump covers twice that (at most 5 h), `across` across, and lowers s f by
+// value + across / 4 at the centre.
+Bump window_bump(const Saddle& s, double h, double across, double aliased) {
   Bump b;
   b.centre = s.centre;
   b.axes = s.axes;
+  const double open = s.value > 0.0 ? s.value : s.value + aliased;
   for (int a = 0; a < 2; ++a)
-    b.radii[a] = std::min(5.0 * h, 2.0 * std::sqrt(2.0 * s.value / -s.curvature[a]));
+    b.radii[a] = std::min(5.0 * h, 2.0 * std::sqrt(2.0 * open / -s.curvature[a]));
   b.radii[2] = across;
   b.depth = s.value + across / 4.0;
   return b;
@@ -325,13 +342,13 @@ bool neck_cut(const Saddle& s, double h, const Sketch& unit, Bump& out) {
 
 }  // namespace
 
-Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
-                     const PointGrid& strokes, const BoundingBox& box, const SaddleSearch& search,
-                     unsigned threads) {
+Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>& lowered,
+                     const Sketch& unit, const PointGrid& strokes, const BoundingBox& box,
+                     const SaddleSearch& search, unsigned threads) {
   Saddles found;
   const double most = std::max(search.window_most, search.bridge_most);
   if (!(most > 0.0) && !(search.neck_most > 0.0)) return found;
-  const SearchGrid grid(f, scale, strokes, box, search, threads);
+  const SearchGrid grid(f, scale, lowered, strokes, box, search, threads);
   const double h = grid.step();
   std::vector<char> taken(grid.count(), 0);
   std::vector<Eigen::Vector3d> seen;
@@ -346,16 +363,18 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
   const Candidates found_at = candidates(grid, most, search.neck_most);
   for (const std::array<int, 3>& c : found_at.outside) {
     Saddle s;
-    if (!newton(grid, grid.point(c[0], c[1], c[2]), s) || !(s.value > 0.0)) continue;
-    const bool window = s.value < search.window_most && s.curvature[1] < 0.0 &&
-                        s.curvature[2] > 0.0 &&
+    if (!newton(grid, grid.point(c[0], c[1], c[2]), s) || !(s.value > -search.window_aliased))
+      continue;
+    const bool window = search.window_most > 0.0 && s.value < search.window_most &&
+                        s.curvature[1] < 0.0 && s.curvature[2] > 0.0 &&
                         open_across(grid, s.centre, s.axes.col(2), search.across);
-    const bool gap = s.value < search.bridge_most && s.curvature[0] < 0.0 && s.curvature[1] > 0.0;
+    const bool gap = s.value > 0.0 && s.value < search.bridge_most && s.curvature[0] < 0.0 &&
+                     s.curvature[1] > 0.0;
     if (!window && !gap) continue;
     if (!take(s.centre)) continue;
     if (window) {
       const std::size_t first = found.windows.size();
-      found.windows.push_back(window_bump(s, h, search.across));
+      found.windows.push_back(window_bump(s, h, search.across, search.window_aliased));
       flood_window(grid, s, search, taken, found.windows);
       for (std::size_t i = first + 1; i < found.windows.size(); ++i)
         seen.push_back(found.windows[i].centre);  // a saddle in a flooded region is that window's

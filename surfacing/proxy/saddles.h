@@ -29,7 +29,11 @@ struct Bump {
 struct SaddleSearch {
   double near = 0.1;        ///< grid points farther than this from every stroke are not searched
   double step = 0.02;       ///< grid spacing h
-  double window_most = 0.025;  ///< windows: saddle values in (0, window_most); 0 = none
+  double window_most = 0.025;  ///< windows: saddle values in (-window_aliased, window_most);
+                               ///< 0 = none
+  double window_aliased = 0.0;  ///< a window saddle just inside the surface (the double wall's
+                                ///< inside layer thinner than the polygonisation's cells there)
+                                ///< opens in the polygonised surface all the same
   double across = 0.04;     ///< a window's membrane thickness
   double window_reach = 0.6;   ///< a window's open region is flooded this far from its saddle
   int window_points = 400;     ///< at most this many membrane bumps per window
@@ -53,7 +57,9 @@ struct Saddles {
 ///   the points whose minimum of s f across the wall is positive and below window_most, is
 ///   flooded from the saddle over the grid, near the saddle's plane, and each point gets a small
 ///   bump: together a membrane about as thick as the walls (the slot of a thin plate is long and
-///   flat-bottomed, not an ellipse).
+///   flat-bottomed, not an ellipse). A window saddle just inside the surface (value above
+///   -window_aliased: the inside layer thinner than the polygonisation's cells) counts too: the
+///   polygonised surface opens there all the same.
 /// - a bridge: one negative curvature (along the gap) and two positive, as between two parts of
 ///   the surface that nearly touch, kept only when a stroke crosses the gap's mid-plane near the
 ///   saddle outside the surface (the strokes depict a connection there: a mug's handle meeting
@@ -63,10 +69,12 @@ struct Saddles {
 ///   parts, kept only when no stroke crosses the neck's mid-plane within twice its radius or 2 h
 ///   (nothing depicts the connection: two parts drawn apart that VIPSS merged). Its bump raises
 ///   the field over a thin disc across the neck.
-/// `unit` is the unit-diagonal sketch whose samples made f; `strokes` a grid over points along
-/// its strokes; `box` the search box.
-Saddles find_saddles(const HermiteRbf& f, double scale, const Sketch& unit,
-                     const PointGrid& strokes, const BoundingBox& box, const SaddleSearch& search,
-                     unsigned threads);
+/// `lowered`: bumps already lowering s f (the saddles are those of s f less their sum: a window
+/// left open round a membrane that could not follow a curved wall). `unit` is the unit-diagonal
+/// sketch whose samples made f; `strokes` a grid over points along its strokes; `box` the search
+/// box.
+Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>& lowered,
+                     const Sketch& unit, const PointGrid& strokes, const BoundingBox& box,
+                     const SaddleSearch& search, unsigned threads);
 
 }  // namespace sketchsurf

@@ -121,6 +121,19 @@ TEST(ProxyShape, MugDrawnInVrWithoutAWebOverItsHandle) {
   const Made m = proxy_of("mug", vr_style(2));
   EXPECT_LT(m.report.far_area, 0.05);
   expect_handle_open_and_attached(m);
+  // A window through its front wall, whose saddle lies just inside the surface (the inside layer
+  // thinner than a cell there), is closed as well: the handle is the one opening.
+  EXPECT_EQ(m.topology.genus, 1);
+}
+
+// Drawn mid-air (seed 2), a curved shell's inside layer thins below the polygonisation's cells at
+// two points between strokes: their saddles lie just inside the surface, yet the polygonised
+// surface opens a window at each; they are closed as windows are.
+TEST(ProxyShape, CurvedShellDrawnInVrHasNoWindow) {
+  const Made m = proxy_of("curved_shell", vr_style(2));
+  EXPECT_EQ(m.topology.components, 1u);
+  EXPECT_EQ(m.topology.genus, 0);
+  EXPECT_GT(m.report.windows, 0u);
 }
 
 // Drawn mid-air, a thin plate's two faces pinch out between strokes into long slots through it;

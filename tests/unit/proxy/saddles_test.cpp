@@ -89,7 +89,7 @@ Saddles saddles_of(const Field& field, const Sketch& s, const SaddleSearch& sear
   BoundingBox box;
   box.extend(Eigen::Vector3d(-0.55, -0.3, -0.3));
   box.extend(Eigen::Vector3d(0.55, 0.3, 0.3));
-  return find_saddles(field.vipss.function, field.scale, s, grid, box, search, 1);
+  return find_saddles(field.vipss.function, field.scale, {}, s, grid, box, search, 1);
 }
 
 TEST(Saddles, GapCrossedByAStrokeIsBridged) {
