@@ -232,7 +232,7 @@ class ConfinedField {
     Eigen::Vector3d g;
     const double value = f_.value_gradient(p, &g);
     Eigen::Vector3d down = Eigen::Vector3d::Zero();
-    const double own = scale_ * value - (bumps_.empty() ? 0.0 : lowered(p, &down));
+    const double own = scale_ * value - (bumps_.empty() ? 0.0 : bumps_value(bumps_, p, &down));
     if (c > own) {
       *to_surface = -c * away;
       return c;
@@ -278,7 +278,7 @@ class ConfinedField {
   double value_from(const Eigen::Vector3d& p, double c, double sf) const {
     if (c == kFar) return band_;
     if (outside(c)) return c;
-    return std::max(c, sf - lowered(p, nullptr));
+    return std::max(c, sf - bumps_value(bumps_, p, nullptr));
   }
   // s f at p.
   double scaled(const Eigen::Vector3d& p) const { return scale_ * f_.value(p); }
@@ -295,12 +295,6 @@ class ConfinedField {
   double band_;
   const Outline* outline_ = nullptr;
   std::vector<Bump> bumps_;
-
-  double lowered(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
-    double sum = 0.0;
-    for (const Bump& b : bumps_) sum += b.value(p, gradient);
-    return sum;
-  }
 };
 
 // Values of a function at the vertices of one polygonisation grid (origin, spacing h), kept

@@ -22,6 +22,13 @@ double Bump::value(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
   return depth * u * u * u;
 }
 
+double bumps_value(const std::vector<Bump>& bumps, const Eigen::Vector3d& p,
+                   Eigen::Vector3d* gradient) {
+  double sum = 0.0;
+  for (const Bump& b : bumps) sum += b.value(p, gradient);
+  return sum;
+}
+
 namespace {
 
 constexpr double kUnknown = std::numeric_limits<double>::infinity();
@@ -63,7 +70,8 @@ class SearchGrid {
     value_.assign(count_, kUnknown);
     parallel_for(0, near_ids.size(), threads, [&](std::size_t r) {
       const auto i = static_cast<Eigen::Index>(r);
-      value_[near_ids[r]] = scale * near_values[i] - bumps(points.row(i).transpose(), nullptr);
+      value_[near_ids[r]] =
+          scale * near_values[i] - bumps_value(lowered_, points.row(i).transpose(), nullptr);
     });
   }
 
@@ -92,7 +100,7 @@ class SearchGrid {
     *g *= scale_;
     if (lowered_.empty()) return v;
     Eigen::Vector3d down = Eigen::Vector3d::Zero();
-    const double b = bumps(x, &down);
+    const double b = bumps_value(lowered_, x, &down);
     *g -= down;
     return v - b;
   }
@@ -102,13 +110,6 @@ class SearchGrid {
   }
 
  private:
-  // The bumps' sum at x; their gradient is added to `gradient` (if given).
-  double bumps(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const {
-    double sum = 0.0;
-    for (const Bump& b : lowered_) sum += b.value(x, gradient);
-    return sum;
-  }
-
   const HermiteRbf& f_;
   double scale_;
   const std::vector<Bump>& lowered_;

@@ -25,6 +25,11 @@ struct Bump {
   double value(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const;
 };
 
+/// The sum of `bumps` at p (how far they lower the field there); their gradients are added to
+/// `gradient` (if given).
+double bumps_value(const std::vector<Bump>& bumps, const Eigen::Vector3d& p,
+                   Eigen::Vector3d* gradient);
+
 /// Where and how finely the saddles are searched, all lengths on the unit-diagonal sketch.
 struct SaddleSearch {
   double near = 0.1;        ///< grid points farther than this from every stroke are not searched
