@@ -11,15 +11,18 @@
 
 namespace sketchsurf {
 
-/// Points spread over a mesh's area: each sample picks a face with probability proportional to
-/// its area, then a uniform point in it. Deterministic for a seed (the random numbers are made
-/// bit for bit the same on every platform).
+/// Points spread over a mesh's area: each face takes its share of the count by area (rounded up or
+/// down at random), each a uniform point in it. A face's points depend only on its corners'
+/// positions and the seed, not on the order of the faces or of their corners: the same surface
+/// gives the same samples however it is listed, and two surfaces that share faces share those
+/// faces' samples. Deterministic (the random numbers are made bit for bit the same on every
+/// platform).
 struct SurfaceSamples {
   Eigen::MatrixX3d points;  ///< #S x 3
   std::vector<int> faces;   ///< the face each sample lies on
   double area = 0.0;        ///< the mesh's total area
 };
-/// `count` area-weighted samples of `mesh` (none when it has no area).
+/// About `count` area-weighted samples of `mesh` (none when it has no area).
 SurfaceSamples sample_surface(const TriMesh& mesh, std::size_t count, std::uint64_t seed);
 
 /// Order statistics of a set of distances (any unit the caller chooses).

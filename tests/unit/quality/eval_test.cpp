@@ -80,6 +80,32 @@ TEST(Eval, ASurfaceAgainstItselfIsExact) {
   EXPECT_EQ(e.creases.sharp_edges, 0u);  // a fine torus has no sharp edge
 }
 
+TEST(Eval, TheSameSurfaceListedInAnotherOrderScoresTheSame) {
+  // A result that is its proxy with each face's corners rotated and the faces reversed (as the
+  // pipeline may hand it back) must score exactly as the proxy did.
+  const TriMesh truth = testing::icosphere(4, 1.0);
+  const TriMesh a = testing::rounded_box_mesh(3, Eigen::Vector3d(0.9, 0.8, 0.85), 0.3);
+  TriMesh b;
+  for (auto v : a.vertices()) b.add_vertex(a.point(v));
+  std::vector<std::vector<TriMesh::VertexHandle>> faces;
+  for (auto f : a.faces()) {
+    std::vector<TriMesh::VertexHandle> c;
+    for (auto v : a.fv_range(f)) c.push_back(TriMesh::VertexHandle(v.idx()));
+    std::rotate(c.begin(), c.begin() + 1 + f.idx() % 2, c.end());
+    faces.push_back(c);
+  }
+  for (auto it = faces.rbegin(); it != faces.rend(); ++it) b.add_face(*it);
+  ASSERT_EQ(b.n_faces(), a.n_faces());
+  const Evaluation ea = evaluate(a, truth), eb = evaluate(b, truth);
+  EXPECT_GT(ea.accuracy.p95, 1e-3);  // the shapes differ: the test is not vacuous
+  EXPECT_EQ(ea.accuracy.median, eb.accuracy.median);
+  EXPECT_EQ(ea.accuracy.p95, eb.accuracy.p95);
+  EXPECT_EQ(ea.accuracy.max, eb.accuracy.max);
+  // The truth's samples are the same; their distances to a face differ in the last bits with
+  // the order of its corners.
+  EXPECT_NEAR(ea.completeness.p95, eb.completeness.p95, 1e-12);
+}
+
 TEST(Eval, MissingPartIsSeenByCompletenessOnly) {
   // Truth: two spheres; result: one of them. Accuracy is perfect, completeness is not.
   TriMesh truth = testing::icosphere(3, 0.5);
