@@ -69,6 +69,7 @@ py::dict report_dict(const SurfaceResult& r) {
   std::vector<std::int64_t> ignored;
   for (const Decoration& dec : rep.decorations) ignored.push_back(dec.id);
   d["ignored_strokes"] = ignored;
+  d["tubes"] = rep.tubes;
   d["timings"] = py::dict(py::arg("prepare_s") = rep.prepare_s, py::arg("proxy_s") = rep.proxy_s,
                           py::arg("segment_s") = rep.segment_s, py::arg("extraction_s") = rep.extraction_s,
                           py::arg("checks_s") = rep.checks_s, py::arg("total_s") = rep.total_s);

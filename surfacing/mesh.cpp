@@ -79,4 +79,15 @@ TriMesh mesh_from_matrices(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F)
   return mesh;
 }
 
+void append_mesh(TriMesh& mesh, const TriMesh& part) {
+  std::vector<TriMesh::VertexHandle> map;
+  map.reserve(part.n_vertices());
+  for (auto v : part.vertices()) map.push_back(mesh.add_vertex(part.point(v)));
+  for (auto f : part.faces()) {
+    std::vector<TriMesh::VertexHandle> corners;
+    for (auto v : part.fv_range(f)) corners.push_back(map[v.idx()]);
+    mesh.add_face(corners);
+  }
+}
+
 }  // namespace sketchsurf

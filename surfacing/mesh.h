@@ -36,5 +36,8 @@ std::vector<int> vertex_components(const Eigen::MatrixX3i& F, Eigen::Index verti
 /// Builds a mesh from #V x 3 positions and #F x 3 triangles; throws Error (Processing) on a
 /// triangle that OpenMesh cannot add (non-manifold or inconsistently oriented).
 TriMesh mesh_from_matrices(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+/// Adds the vertices and faces of `part` to `mesh` (a separate component), in their order: the
+/// vertex i of `part` becomes mesh.n_vertices() (before the call) + i.
+void append_mesh(TriMesh& mesh, const TriMesh& part);
 
 }  // namespace sketchsurf

@@ -24,8 +24,8 @@ bool PrepareOptions::valid(std::string* why) const {
     if (why) *why = "prepare.min_points must be at least 2";
     return false;
   }
-  return consolidation.valid(why) && decorations.valid(why) && openings.valid(why) &&
-         mirror_detection.valid(why);
+  return consolidation.valid(why) && decorations.valid(why) && tubes.valid(why) &&
+         openings.valid(why) && mirror_detection.valid(why);
 }
 
 bool Params::valid(std::string* why) const {
@@ -69,6 +69,9 @@ const std::map<std::string, Setter>& parameter_table() {
       {"prepare.consolidate", setter([](Params& p) -> auto& { return p.prepare.consolidate; })},
       {"prepare.consolidation_radius", setter([](Params& p) -> auto& { return p.prepare.consolidation.radius; })},
       {"prepare.ignore_decorations", setter([](Params& p) -> auto& { return p.prepare.ignore_decorations; })},
+      {"prepare.decoration_tubes", setter([](Params& p) -> auto& { return p.prepare.decoration_tubes; })},
+      {"prepare.tube_radius", setter([](Params& p) -> auto& { return p.prepare.tubes.radius; })},
+      {"prepare.tube_sides", setter([](Params& p) -> auto& { return p.prepare.tubes.sides; })},
       {"prepare.open_rims", setter([](Params& p) -> auto& { return p.prepare.open_rims; })},
       {"proxy.points", setter([](Params& p) -> auto& { return p.proxy.points; })},
       {"proxy.lambda", setter([](Params& p) -> auto& { return p.proxy.lambda; })},
@@ -326,6 +329,23 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
         << "% of its area. Draw the object's outlines and cross-sections, give a proxy mesh, or "
         << "keep the result anyway (checks.refuse_score = 0; the command line's --force)";
     throw Error::processing(refusal.str());
+  }
+  // The strokes that depict no surface, as thin tubes apart from it when asked for (the checks
+  // above judge the surface alone). Their vertices take the label after the last region's.
+  if (params_.prepare.decoration_tubes && !report.decorations.empty()) {
+    Sketch decorations;
+    decorations.mirror = sketch.mirror;
+    for (const Decoration& d : report.decorations) {
+      decorations.strokes.push_back(sketch.strokes[d.stroke]);
+      decorations.strokes.back().ignored = false;
+    }
+    const TriMesh tubes = stroke_tubes(decorations, report.diagonal, params_.prepare.tubes);
+    const std::vector<int> parts = vertex_components(face_matrix(tubes), static_cast<Eigen::Index>(tubes.n_vertices()));
+    report.tubes = static_cast<std::size_t>(
+        std::count_if(parts.begin(), parts.end(), [&, i = 0](int p) mutable { return p == i++; }));
+    append_mesh(result.mesh, tubes);
+    result.labels.resize(result.mesh.n_vertices(), static_cast<int>(result.segmentation.models.size()));
+    result.sharp.resize(result.mesh.n_vertices(), 0);
   }
   report.total_s = seconds_since(start);
   progress.update("done", 1.0);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "surfacing/extract/extract.h"
+#include "surfacing/extract/tubes.h"
 #include "surfacing/mesh.h"
 #include "surfacing/progress.h"
 #include "surfacing/proxy/proxy.h"
@@ -44,6 +45,9 @@ struct PrepareOptions {
   bool ignore_decorations = true;   ///< strokes that depict no surface (a dot apart, a stroke
                                     ///< hanging by one end) are marked ignored (decorations.h)
   DecorationOptions decorations;
+  bool decoration_tubes = false;    ///< those strokes are drawn as thin closed tubes in the output
+                                    ///< (tubes.h), apart from the surface, instead of left out
+  TubeOptions tubes;
   bool open_rims = true;            ///< rims with nothing drawn across or beyond them (a cup's top)
                                     ///< become boundary strokes, unless the sketch marks some
                                     ///< boundary itself (openings.h)
@@ -75,6 +79,8 @@ struct SurfaceReport {
   Consolidation consolidation;          ///< over-sketched passes drawn together
   std::size_t strokes = 0, points = 0;  ///< after preparation (ignored strokes included)
   std::vector<Decoration> decorations;  ///< strokes ignored as depicting no surface
+  std::size_t tubes = 0;                ///< tubes drawn round them (decoration_tubes; mirror images
+                                        ///< counted)
   std::vector<Opening> openings;        ///< rims found and made boundary strokes
   std::string opening_failure;          ///< why the rims found could not be opened (the surface
                                         ///< was then kept closed); empty otherwise

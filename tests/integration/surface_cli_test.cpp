@@ -182,6 +182,43 @@ TEST(SurfaceCli, ACupIsOpenedWithANoteAndKeptClosedWithClosed) {
   EXPECT_FALSE(report()["extraction"]["open"].get<bool>());
 }
 
+TEST(SurfaceCli, AnAntennaIsLeftOutWithANoteOrDrawnAsATubeWithTubes) {
+  const fs::path dir = temp_dir("antenna");
+  Sketch sketch = testing::sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return Eigen::Vector3d(0.5 + 0.4 * t, 0, 0); }, 0.0, 1.0, 0.01));
+  sketch.params = {{"proxy.edge", 0.02}, {"segment.restarts", 2}};
+  write_sketch(sketch, dir / "antenna.json");
+  const std::string base = std::string(SKETCHSURF_CLI) + " surface " + (dir / "antenna.json").string() +
+                           " -o " + (dir / "out.ply").string() + " --report " + (dir / "report.json").string();
+  const auto note = [&](const std::string& flags) {
+    const int status = std::system((base + flags + " 2>" + (dir / "err.txt").string()).c_str());
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    std::ifstream err(dir / "err.txt");
+    return std::string((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  };
+  const auto tubes = [&] {
+    std::ifstream in(dir / "report.json");
+    return nlohmann::json::parse(in)["tubes"].get<int>();
+  };
+  const std::string left_out = note("");
+  EXPECT_NE(left_out.find("ignored 1 stroke(s)"), std::string::npos) << left_out;
+  EXPECT_NE(left_out.find("--tubes"), std::string::npos) << left_out;
+  EXPECT_EQ(tubes(), 0);
+  const std::size_t surface_faces = read_mesh(dir / "out.ply").n_faces();
+
+  const std::string drawn = note(" --tubes");
+  EXPECT_NE(drawn.find("drawn as 1 thin tube(s)"), std::string::npos) << drawn;
+  EXPECT_EQ(tubes(), 1);
+  EXPECT_GT(read_mesh(dir / "out.ply").n_faces(), surface_faces);
+
+  const CliRun both = run_cli("surface " + (dir / "antenna.json").string() + " -o " +
+                                  (dir / "x.ply").string() + " --tubes --keep-all-strokes",
+                              dir);
+  EXPECT_EQ(both.code, 2) << both.err;
+  EXPECT_FALSE(fs::exists(dir / "x.ply"));
+}
+
 TEST(SurfaceCli, AHatchingSceneExits4WithoutOutputAndForceWritesIt) {
   const fs::path dir = temp_dir("hatching");
   write_sketch(testing::hatching_sketch(10, 3), dir / "hatching.json");

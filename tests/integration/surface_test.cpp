@@ -296,6 +296,41 @@ TEST(Surface, AnAntennaStrokeIsIgnoredAndMakesNoSpike) {
   EXPECT_LT(std::abs(r.report.symmetry->plane.offset), 1e-3);
 }
 
+TEST(Surface, AnAntennaAskedForAsATubeIsOneApartFromTheSameSurface) {
+  Sketch sketch = testing::sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return Eigen::Vector3d(0.5 + 0.4 * t, 0, 0); }, 0.0, 1.0, 0.01));
+  Params params;
+  params.segment.restarts = 2;
+  const SurfaceResult plain = Surfacer(params).run(sketch);
+  params.prepare.decoration_tubes = true;
+  const SurfaceResult r = Surfacer(params).run(sketch);
+  EXPECT_EQ(r.report.tubes, 1u);
+  // The surface is the one made without the tube, vertex for vertex; the tube's vertices follow.
+  const std::size_t n = plain.mesh.n_vertices();
+  ASSERT_GT(r.mesh.n_vertices(), n);
+  for (std::size_t i = 0; i < n; ++i)
+    ASSERT_EQ(to_eigen(r.mesh.point(TriMesh::VertexHandle(static_cast<int>(i)))),
+              to_eigen(plain.mesh.point(TriMesh::VertexHandle(static_cast<int>(i)))));
+  EXPECT_EQ(r.report.checks.genus, plain.report.checks.genus);
+  const MeshTopology t = mesh_topology(r.mesh);
+  EXPECT_EQ(t.components, 2u);
+  EXPECT_TRUE(t.closed());
+  // Round the antenna (x from 0.5 to 0.9 on the x axis): within the radius of the segment, the
+  // tip one radius past its end, labelled after the last region and not sharp.
+  const double radius = params.prepare.tubes.radius * r.report.diagonal;
+  double farthest = 0.0;
+  for (std::size_t i = n; i < r.mesh.n_vertices(); ++i) {
+    const Eigen::Vector3d p = to_eigen(r.mesh.point(TriMesh::VertexHandle(static_cast<int>(i))));
+    const double x = std::clamp(p.x(), 0.5, 0.9);
+    EXPECT_LT((p - Eigen::Vector3d(x, 0, 0)).norm(), radius * (1 + 1e-6));
+    farthest = std::max(farthest, p.x());
+    EXPECT_EQ(r.labels[i], static_cast<int>(r.segmentation.models.size()));
+    EXPECT_EQ(r.sharp[i], 0);
+  }
+  EXPECT_NEAR(farthest, 0.9 + radius, 1e-3 * radius);
+}
+
 }  // namespace
 }  // namespace sketchsurf
 

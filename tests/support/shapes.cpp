@@ -352,14 +352,4 @@ std::vector<std::array<int, 2>> triangulated_grid_edges(int side) {
   return edges;
 }
 
-void append_mesh(TriMesh& mesh, const TriMesh& part) {
-  std::vector<TriMesh::VertexHandle> map;
-  for (auto v : part.vertices()) map.push_back(mesh.add_vertex(part.point(v)));
-  for (auto f : part.faces()) {
-    std::vector<TriMesh::VertexHandle> corners;
-    for (auto v : part.fv_range(f)) corners.push_back(map[v.idx()]);
-    mesh.add_face(corners);
-  }
-}
-
 }  // namespace sketchsurf::testing

@@ -72,9 +72,6 @@ TriMesh rounded_cylinder_mesh(int subdivisions, double radius, double half_heigh
 /// Torus around +z as a closed triangle mesh, `n_major` x `n_minor` quads split in two.
 TriMesh torus_mesh(int n_major, int n_minor, double major, double minor);
 
-/// Adds the vertices and faces of `part` to `mesh` (a separate component).
-void append_mesh(TriMesh& mesh, const TriMesh& part);
-
 /// Distance from p to the surface of the axis-aligned box with half extents `half` at the origin.
 double box_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& half);
 

@@ -1,5 +1,5 @@
 // sketchsurf batch SKETCH...|DIR... -o OUT_DIR [--jobs N] [--format ply|obj|glb|gltf] [--seed N]
-// [--threads N] [--keep-all-strokes] [--closed] [--force]: `surface` on every sketch, each in a
+// [--threads N] [--keep-all-strokes | --tubes] [--closed] [--force]: `surface` on every sketch, each in a
 // process of its own, so that a failure, a crash or an out-of-memory kill in one never stops the
 // others; a summary table at the end, exit 0 only when every sketch was surfaced.
 
@@ -46,6 +46,7 @@ struct BatchOptions {
   std::optional<std::uint64_t> seed;
   std::optional<unsigned> threads;
   bool keep_all_strokes = false;
+  bool tubes = false;
   bool closed = false;
   bool force = false;
 };
@@ -272,6 +273,7 @@ void run_batch(const BatchOptions& opt, const GlobalOptions& global) {
                                     "--report", base.string() + ".json", "--threads", std::to_string(threads)};
       if (opt.seed) args.insert(args.end(), {"--seed", std::to_string(*opt.seed)});
       if (opt.keep_all_strokes) args.push_back("--keep-all-strokes");
+      if (opt.tubes) args.push_back("--tubes");
       if (opt.closed) args.push_back("--closed");
       if (opt.force) args.push_back("--force");
       running[spawn(exe, args, base.string() + ".log")] = {next, Clock::now()};
@@ -358,8 +360,10 @@ void add_batch_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--seed", opt->seed, "Random seed of the segmentation")->check(whole_number(0, UINT64_MAX));
   cmd->add_option("--threads", opt->threads, "Worker threads per sketch (default: the cores shared among --jobs)")
       ->check(whole_number(1, kMaxThreads));
-  cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
-                "Surface every stroke, also those that seem to depict no surface");
+  auto* keep_all = cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
+                                 "Surface every stroke, also those that seem to depict no surface");
+  cmd->add_flag("--tubes", opt->tubes, "Draw the strokes that seem to depict no surface as thin tubes")
+      ->excludes(keep_all);
   cmd->add_flag("--closed", opt->closed, "Keep every surface closed: do not open it at rims found in the strokes");
   cmd->add_flag("--force", opt->force, "Write surfaces also where the strokes do not seem to depict one");
   cmd->callback([opt, &global] { run_batch(*opt, global); });

@@ -38,6 +38,7 @@ struct SurfaceCommandOptions {
   std::optional<std::uint64_t> seed;
   std::optional<unsigned> threads;
   bool keep_all_strokes = false;
+  bool tubes = false;
   bool closed = false;
   bool force = false;
   bool with_strokes = false;
@@ -157,6 +158,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                            {"points", rep.stroke_distance.points}}},
       {"checks", checks_json(rep.checks)},
       {"decorations", decorations_json(rep.decorations)},
+      {"tubes", rep.tubes},
       {"openings", openings_json(rep.openings)},
       {"opening_failure", rep.opening_failure},
       {"consolidation", {{"points", rep.consolidation.points},
@@ -208,6 +210,7 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
   }
   if (opt.seed) params.segment.seed = *opt.seed;
   if (opt.keep_all_strokes) params.prepare.ignore_decorations = false;
+  if (opt.tubes) params.prepare.decoration_tubes = true;
   if (opt.closed) params.prepare.open_rims = false;
   if (opt.force) params.checks.refuse_score = 0.0;
   if (opt.threads)
@@ -268,7 +271,10 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
               << " stroke(s) that depict no surface (id";
     for (const Decoration& d : result.report.decorations)
       std::cerr << " " << d.id << (d.kind == DecorationKind::SmallGroup ? " (small group apart)" : " (hangs by one end)");
-    std::cerr << "); --keep-all-strokes keeps them\n";
+    if (result.report.tubes > 0)
+      std::cerr << "), drawn as " << result.report.tubes << " thin tube(s) apart from the surface\n";
+    else
+      std::cerr << "); --keep-all-strokes keeps them, --tubes draws them as thin tubes\n";
   }
   if (!global.quiet && !result.report.openings.empty()) {
     std::cerr << opt.sketch << ": note: opened the surface at " << result.report.openings.size()
@@ -330,9 +336,14 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
       ->check(whole_number(0, UINT64_MAX));
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all); never changes the result")
       ->check(whole_number(0, kMaxThreads));
-  cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
-                "Surface every stroke, also those that seem to depict no surface (a dot apart, a "
-                "stroke hanging by one end)");
+  auto* keep_all = cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
+                                 "Surface every stroke, also those that seem to depict no surface (a "
+                                 "dot apart, a stroke hanging by one end)");
+  cmd->add_flag("--tubes", opt->tubes,
+                "Draw the strokes that seem to depict no surface as thin closed tubes (radius "
+                "prepare.tube_radius, 0.4% of the diagonal) apart from the surface, instead of leaving "
+                "them out")
+      ->excludes(keep_all);
   cmd->add_flag("--closed", opt->closed,
                 "Keep the surface closed: do not open it at rims found in the strokes (a closed loop "
                 "with nothing drawn across or beyond it, such as a cup's top)");

@@ -11,7 +11,7 @@ namespace {
 
 // `b` added to `a` as another component.
 TriMesh joined(TriMesh a, const TriMesh& b) {
-  testing::append_mesh(a, b);
+  append_mesh(a, b);
   return a;
 }
 

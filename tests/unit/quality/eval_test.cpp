@@ -109,7 +109,7 @@ TEST(Eval, TheSameSurfaceListedInAnotherOrderScoresTheSame) {
 TEST(Eval, MissingPartIsSeenByCompletenessOnly) {
   // Truth: two spheres; result: one of them. Accuracy is perfect, completeness is not.
   TriMesh truth = testing::icosphere(3, 0.5);
-  testing::append_mesh(truth, testing::icosphere(3, 0.5, Eigen::Vector3d(2, 0, 0)));
+  append_mesh(truth, testing::icosphere(3, 0.5, Eigen::Vector3d(2, 0, 0)));
   const TriMesh result = testing::icosphere(3, 0.5);
   const Evaluation e = evaluate(result, truth);
   EXPECT_LT(e.accuracy.max, 1e-9);
