@@ -184,9 +184,7 @@ TEST(SurfaceCli, ACupIsOpenedWithANoteAndKeptClosedWithClosed) {
 
 TEST(SurfaceCli, AnAntennaIsLeftOutWithANoteOrDrawnAsATubeWithTubes) {
   const fs::path dir = temp_dir("antenna");
-  Sketch sketch = testing::sphere_sketch(0.5, 4);
-  sketch.strokes.push_back(testing::sample_curve(
-      [](double t) { return Eigen::Vector3d(0.5 + 0.4 * t, 0, 0); }, 0.0, 1.0, 0.01));
+  Sketch sketch = testing::sphere_with_antenna_sketch();
   sketch.params = {{"proxy.edge", 0.02}, {"segment.restarts", 2}};
   write_sketch(sketch, dir / "antenna.json");
   const std::string base = std::string(SKETCHSURF_CLI) + " surface " + (dir / "antenna.json").string() +

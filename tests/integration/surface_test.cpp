@@ -278,9 +278,7 @@ namespace sketchsurf {
 namespace {
 
 TEST(Surface, AnAntennaStrokeIsIgnoredAndMakesNoSpike) {
-  Sketch sketch = testing::sphere_sketch(0.5, 4);
-  sketch.strokes.push_back(testing::sample_curve(
-      [](double t) { return Eigen::Vector3d(0.5 + 0.4 * t, 0, 0); }, 0.0, 1.0, 0.01));
+  const Sketch sketch = testing::sphere_with_antenna_sketch();
   Params params;
   params.segment.restarts = 2;
   const SurfaceResult r = Surfacer(params).run(sketch);
@@ -297,9 +295,7 @@ TEST(Surface, AnAntennaStrokeIsIgnoredAndMakesNoSpike) {
 }
 
 TEST(Surface, AnAntennaAskedForAsATubeIsOneApartFromTheSameSurface) {
-  Sketch sketch = testing::sphere_sketch(0.5, 4);
-  sketch.strokes.push_back(testing::sample_curve(
-      [](double t) { return Eigen::Vector3d(0.5 + 0.4 * t, 0, 0); }, 0.0, 1.0, 0.01));
+  const Sketch sketch = testing::sphere_with_antenna_sketch();
   Params params;
   params.segment.restarts = 2;
   const SurfaceResult plain = Surfacer(params).run(sketch);

@@ -151,6 +151,12 @@ Sketch torus_ring_sketch(int strokes, int points) {
   return sketch;
 }
 
+Sketch sphere_with_antenna_sketch() {
+  Sketch sketch = sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(sample_curve([](double t) { return Eigen::Vector3d(0.5 + 0.4 * t, 0, 0); }, 0.0, 1.0, 0.01));
+  return sketch;
+}
+
 Sketch sphere_sketch(double radius, int meridians) {
   Sketch sketch;
   sketch.provenance = "generated sphere";

@@ -35,6 +35,9 @@ Sketch torus_ring_sketch(int strokes, int points);
 
 /// Sphere centred at the origin: `meridians` great half-circles through the poles and the equator.
 Sketch sphere_sketch(double radius = 0.5, int meridians = 4);
+/// sphere_sketch(0.5, 4) with an antenna: a straight stroke from (0.5, 0, 0) to (0.9, 0, 0),
+/// hanging off the sphere by one end (a stroke that depicts no surface).
+Sketch sphere_with_antenna_sketch();
 
 /// Torus around +z: `tube_circles` small circles around the tube, plus the outer and inner equators.
 Sketch torus_sketch(double major = 0.5, double minor = 0.2, int tube_circles = 8);
