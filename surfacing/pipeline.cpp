@@ -71,6 +71,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"prepare.ignore_decorations", setter([](Params& p) -> auto& { return p.prepare.ignore_decorations; })},
       {"prepare.decoration_tubes", setter([](Params& p) -> auto& { return p.prepare.decoration_tubes; })},
       {"prepare.tube_radius", setter([](Params& p) -> auto& { return p.prepare.tubes.radius; })},
+      {"prepare.tube_max_radius", setter([](Params& p) -> auto& { return p.prepare.tubes.max_radius; })},
       {"prepare.tube_sides", setter([](Params& p) -> auto& { return p.prepare.tubes.sides; })},
       {"prepare.open_rims", setter([](Params& p) -> auto& { return p.prepare.open_rims; })},
       {"proxy.points", setter([](Params& p) -> auto& { return p.proxy.points; })},

@@ -1,5 +1,6 @@
 #include "surfacing/extract/tubes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -11,6 +12,10 @@ namespace sketchsurf {
 bool TubeOptions::valid(std::string* why) const {
   if (!(radius > 0.0 && radius < 0.1)) {
     if (why) *why = "prepare tube_radius must be in (0, 0.1)";
+    return false;
+  }
+  if (!(max_radius > 0.0 && max_radius < 0.1)) {
+    if (why) *why = "prepare tube_max_radius must be in (0, 0.1)";
     return false;
   }
   if (sides < 3 || sides > 64) {
@@ -92,10 +97,12 @@ TriMesh stroke_tubes(const Sketch& strokes, double diagonal, const TubeOptions& 
   if (!options.valid(&why)) throw Error::usage(why);
   if (!(diagonal > 0.0 && std::isfinite(diagonal)))
     throw Error::usage("the tubes' diagonal must be positive and finite");
-  const double radius = options.radius * diagonal;
   const Sketch half = strokes.mirror ? half_sketch(strokes, *strokes.mirror) : strokes;
   TriMesh mesh;
   for (const Stroke& stroke : half.strokes) {
+    const double radius = stroke.width > 0.0 && std::isfinite(stroke.width)
+                              ? std::min(0.5 * stroke.width, options.max_radius * diagonal)
+                              : options.radius * diagonal;
     std::vector<Eigen::Vector3d> x = distinct_points(stroke.points, 0.01 * radius);
     if (x.size() < 2) continue;
     append_tube(mesh, x, radius, options.sides);

@@ -13,14 +13,19 @@ namespace sketchsurf {
 
 /// Options of stroke_tubes().
 struct TubeOptions {
-  double radius = 0.004;  ///< tube radius, fraction of the sketch's bounding-box diagonal
+  double radius = 0.004;  ///< tube radius of a stroke without a brush width, fraction of the
+                          ///< sketch's bounding-box diagonal
+  double max_radius = 0.02;  ///< a stroke with a brush width (Open Brush) gets half of it, at most
+                             ///< this (fraction of the diagonal): the tube is as thick as drawn
   int sides = 12;         ///< vertices round each ring of a tube (12: 30 degrees between
                           ///< sides, shaded smooth by viewers and the renderer)
   bool valid(std::string* why) const;
 };
 
-/// One closed, outward-oriented tube of radius options.radius * `diagonal` (the sketch's bounding-box
-/// diagonal, in its units) round each stroke of `strokes`
+/// One closed, outward-oriented tube round each stroke of `strokes`, of radius half the stroke's
+/// brush width (Stroke::width) up to options.max_radius * `diagonal`, or options.radius *
+/// `diagonal` when the stroke has no width (`diagonal`: the sketch's bounding-box diagonal, in its
+/// units)
 /// (annotations other than the mirror plane are not looked at): a ring of options.sides vertices
 /// at every stroke point, turned along the stroke by rotation-minimising frames (the double
 /// reflection of Wang et al. 2008, so that a tube does not twist), neighbouring rings joined by

@@ -340,9 +340,9 @@ void add_surface_command(CLI::App& app, const GlobalOptions& global) {
                                  "Surface every stroke, also those that seem to depict no surface (a "
                                  "dot apart, a stroke hanging by one end)");
   cmd->add_flag("--tubes", opt->tubes,
-                "Draw the strokes that seem to depict no surface as thin closed tubes (radius "
-                "prepare.tube_radius, 0.4% of the diagonal) apart from the surface, instead of leaving "
-                "them out")
+                "Draw the strokes that seem to depict no surface as thin closed tubes apart from the "
+                "surface (as thick as their brush, else 0.4% of the diagonal), instead of leaving them "
+                "out")
       ->excludes(keep_all);
   cmd->add_flag("--closed", opt->closed,
                 "Keep the surface closed: do not open it at rims found in the strokes (a closed loop "

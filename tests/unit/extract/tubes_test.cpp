@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "surfacing/error.h"
 #include "surfacing/proxy/proxy.h"
@@ -94,6 +95,24 @@ TEST(StrokeTubes, WithAMirrorPlaneTheHalfTubeAndItsImage) {
   EXPECT_NEAR(lo, -0.4 - r, 1e-9);
   EXPECT_LT(worst, 1e-9);  // symmetric
   EXPECT_GT(volume(tubes), 0.0);
+}
+
+TEST(StrokeTubes, AStrokeWithABrushWidthIsAsThickAsDrawnUpToTheCap) {
+  // A straight stroke along x: drawn with a brush 0.03 wide its tube has radius 0.015; drawn 0.2
+  // wide, the cap (2% of the diagonal 1); without a width, 0.4% of the diagonal.
+  for (const auto& [width, radius] : {std::pair{0.03, 0.015}, std::pair{0.2, 0.02}, std::pair{0.0, 0.004}}) {
+    Sketch sketch;
+    Stroke s;
+    for (int i = 0; i <= 50; ++i) s.points.emplace_back(0.01 * i, 0.0, 0.0);
+    s.width = width;
+    sketch.strokes.push_back(s);
+    const TriMesh tube = stroke_tubes(sketch, 1.0);
+    ASSERT_GT(tube.n_vertices(), 0u);
+    for (auto v : tube.vertices()) {
+      const Eigen::Vector3d p = to_eigen(tube.point(v));
+      if (p.x() > 0.0 && p.x() < 0.5) EXPECT_NEAR(std::hypot(p.y(), p.z()), radius, 1e-9) << width;
+    }
+  }
 }
 
 TEST(StrokeTubes, AStrokeOnOnePointGivesNothingAndBadOptionsAreRefused) {
