@@ -82,6 +82,15 @@ TEST(BatchCli, SurfacesEverySketchAndReportsTheCorruptOne) {
   EXPECT_GT(read_mesh(dir / "again" / "cube.obj").n_faces(), 500u);
 }
 
+TEST(BatchCli, TubesReachEverySketch) {
+  const fs::path dir = testing::scratch_dir("sketchsurf_batch_");
+  write_quick(testing::sphere_with_antenna_sketch(), dir / "in" / "antenna.json");
+  const testing::CliRun r = testing::run_cli(
+      "batch " + quoted(dir / "in") + " -o " + quoted(dir / "out") + " --tubes", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_json(dir / "out" / "antenna.json")["tubes"], 1);
+}
+
 TEST(BatchCli, RefusesTwoSketchesThatWouldWriteTheSameOutput) {
   const fs::path dir = testing::scratch_dir("sketchsurf_batch_");
   write_quick(testing::cube_sketch(), dir / "a" / "shape.json");
