@@ -340,11 +340,9 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
       decorations.strokes.push_back(sketch.strokes[d.stroke]);
       decorations.strokes.back().ignored = false;
     }
-    const TriMesh tubes = stroke_tubes(decorations, report.diagonal, params_.prepare.tubes);
-    const std::vector<int> parts = vertex_components(face_matrix(tubes), static_cast<Eigen::Index>(tubes.n_vertices()));
-    report.tubes = static_cast<std::size_t>(
-        std::count_if(parts.begin(), parts.end(), [&, i = 0](int p) mutable { return p == i++; }));
-    append_mesh(result.mesh, tubes);
+    const StrokeTubes tubes = stroke_tubes(decorations, report.diagonal, params_.prepare.tubes);
+    report.tubes = tubes.count;
+    append_mesh(result.mesh, tubes.mesh);
     result.labels.resize(result.mesh.n_vertices(), static_cast<int>(result.segmentation.models.size()));
     result.sharp.resize(result.mesh.n_vertices(), 0);
   }

@@ -92,25 +92,27 @@ void append_tube(TriMesh& mesh, const std::vector<Eigen::Vector3d>& x, double ra
 
 }  // namespace
 
-TriMesh stroke_tubes(const Sketch& strokes, double diagonal, const TubeOptions& options) {
+StrokeTubes stroke_tubes(const Sketch& strokes, double diagonal, const TubeOptions& options) {
   std::string why;
   if (!options.valid(&why)) throw Error::usage(why);
   if (!(diagonal > 0.0 && std::isfinite(diagonal)))
     throw Error::usage("the tubes' diagonal must be positive and finite");
   const Sketch half = strokes.mirror ? half_sketch(strokes, *strokes.mirror) : strokes;
-  TriMesh mesh;
+  StrokeTubes out;
   for (const Stroke& stroke : half.strokes) {
     const double radius = stroke.width > 0.0 && std::isfinite(stroke.width)
                               ? std::min(0.5 * stroke.width, options.max_radius * diagonal)
                               : options.radius * diagonal;
     std::vector<Eigen::Vector3d> x = distinct_points(stroke.points, 0.01 * radius);
     if (x.size() < 2) continue;
-    append_tube(mesh, x, radius, options.sides);
+    append_tube(out.mesh, x, radius, options.sides);
+    ++out.count;
     if (!strokes.mirror) continue;
     for (auto& p : x) p = strokes.mirror->reflect(p);
-    append_tube(mesh, x, radius, options.sides);
+    append_tube(out.mesh, x, radius, options.sides);
+    ++out.count;
   }
-  return mesh;
+  return out;
 }
 
 }  // namespace sketchsurf

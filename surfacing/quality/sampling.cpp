@@ -56,8 +56,9 @@ SurfaceSamples sample_surface(const TriMesh& mesh, std::size_t count, std::uint6
   SurfaceSamples out;
   const Eigen::MatrixX3d V = vertex_matrix(mesh);
   const Eigen::MatrixX3i F = face_matrix(mesh);
+  std::vector<double> areas(static_cast<std::size_t>(F.rows()));
   double total = 0.0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) total += triangle_area(V, F, f);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) total += areas[static_cast<std::size_t>(f)] = triangle_area(V, F, f);
   out.area = total;
   if (!(total > 0.0) || count == 0) {
     out.points.resize(0, 3);
@@ -70,7 +71,7 @@ SurfaceSamples sample_surface(const TriMesh& mesh, std::size_t count, std::uint6
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const auto corners = canonical_corners(V, F, f);
     std::mt19937_64 rng(face_seed(corners, seed));
-    const double share = static_cast<double>(count) * triangle_area(V, F, f) / total;
+    const double share = static_cast<double>(count) * areas[static_cast<std::size_t>(f)] / total;
     const auto n = static_cast<std::size_t>(std::floor(share + uniform(rng)));
     for (std::size_t i = 0; i < n; ++i) {
       // Uniform point in a triangle: (1 - sqrt(r1), sqrt(r1) (1 - r2), sqrt(r1) r2).

@@ -1,7 +1,7 @@
 // sketchsurf batch SKETCH...|DIR... -o OUT_DIR [--jobs N] [--format ply|obj|glb|gltf] [--seed N]
-// [--threads N] [--keep-all-strokes | --tubes] [--closed] [--force]: `surface` on every sketch, each in a
-// process of its own, so that a failure, a crash or an out-of-memory kill in one never stops the
-// others; a summary table at the end, exit 0 only when every sketch was surfaced.
+// [--threads N] [--keep-all-strokes | --tubes] [--closed] [--force]: `surface` on every sketch,
+// each in a process of its own, so that a failure, a crash or an out-of-memory kill in one never
+// stops the others; a summary table at the end, exit 0 only when every sketch was surfaced.
 
 #include <fcntl.h>
 #include <spawn.h>

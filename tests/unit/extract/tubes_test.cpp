@@ -38,7 +38,7 @@ TEST(StrokeTubes, AnArcGivesOneClosedOutwardTubeOfTheRadius) {
   Sketch sketch;
   sketch.strokes.push_back(quarter_circle());
   const double diagonal = 2.0, r = 0.004 * diagonal;
-  const TriMesh tube = stroke_tubes(sketch, diagonal);
+  const TriMesh tube = stroke_tubes(sketch, diagonal).mesh;
   const MeshTopology t = mesh_topology(tube);
   EXPECT_EQ(t.components, 1u);
   EXPECT_TRUE(t.closed());
@@ -75,7 +75,9 @@ TEST(StrokeTubes, WithAMirrorPlaneTheHalfTubeAndItsImage) {
   plane.offset = -0.1;
   sketch.mirror = plane;
   const double diagonal = 1.0, r = 0.004;
-  const TriMesh tubes = stroke_tubes(sketch, diagonal);
+  const StrokeTubes made = stroke_tubes(sketch, diagonal);
+  EXPECT_EQ(made.count, 2u);
+  const TriMesh& tubes = made.mesh;
   const MeshTopology t = mesh_topology(tubes);
   EXPECT_EQ(t.components, 2u);
   EXPECT_TRUE(t.closed());
@@ -88,8 +90,9 @@ TEST(StrokeTubes, WithAMirrorPlaneTheHalfTubeAndItsImage) {
     for (auto u : tubes.vertices()) nearest = std::min(nearest, (to_eigen(tubes.point(u)) - plane.reflect(p)).norm());
     worst = std::max(worst, nearest);
     // Away from the cones (at the ends and at the plane), r from the stroke's line.
-    if (std::abs(p.x() - 0.1) > 1.01 * r && p.x() < 0.6 - 1e-9 && p.x() > -0.4 + 1e-9)
+    if (std::abs(p.x() - 0.1) > 1.01 * r && p.x() < 0.6 - 1e-9 && p.x() > -0.4 + 1e-9) {
       EXPECT_NEAR(std::hypot(p.y() - 0.2, p.z()), r, 1e-9);
+    }
   }
   EXPECT_NEAR(hi, 0.6 + r, 1e-9);
   EXPECT_NEAR(lo, -0.4 - r, 1e-9);
@@ -106,11 +109,13 @@ TEST(StrokeTubes, AStrokeWithABrushWidthIsAsThickAsDrawnUpToTheCap) {
     for (int i = 0; i <= 50; ++i) s.points.emplace_back(0.01 * i, 0.0, 0.0);
     s.width = width;
     sketch.strokes.push_back(s);
-    const TriMesh tube = stroke_tubes(sketch, 1.0);
+    const TriMesh tube = stroke_tubes(sketch, 1.0).mesh;
     ASSERT_GT(tube.n_vertices(), 0u);
     for (auto v : tube.vertices()) {
       const Eigen::Vector3d p = to_eigen(tube.point(v));
-      if (p.x() > 0.0 && p.x() < 0.5) EXPECT_NEAR(std::hypot(p.y(), p.z()), radius, 1e-9) << width;
+      if (p.x() > 0.0 && p.x() < 0.5) {
+        EXPECT_NEAR(std::hypot(p.y(), p.z()), radius, 1e-9) << width;
+      }
     }
   }
 }
@@ -120,7 +125,8 @@ TEST(StrokeTubes, AStrokeOnOnePointGivesNothingAndBadOptionsAreRefused) {
   Stroke dot;
   dot.points.assign(5, Eigen::Vector3d(0.1, 0.2, 0.3));
   sketch.strokes.push_back(dot);
-  EXPECT_EQ(stroke_tubes(sketch, 1.0).n_vertices(), 0u);
+  EXPECT_EQ(stroke_tubes(sketch, 1.0).count, 0u);
+  EXPECT_EQ(stroke_tubes(sketch, 1.0).mesh.n_vertices(), 0u);
   TubeOptions options;
   options.sides = 2;
   EXPECT_THROW(stroke_tubes(sketch, 1.0, options), Error);
