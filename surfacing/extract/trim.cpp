@@ -131,8 +131,11 @@ TrimResult trim_open_surface(const TriMesh& proxy, const Sketch& sketch,
   if (boundary.strokes.empty()) throw Error::usage("trim_open_surface: the sketch has no boundary stroke");
   const int nv = static_cast<int>(proxy.n_vertices());
 
-  // Edges crossed by the projected boundary strokes, and the vertices with interior stroke points.
-  const StrokeGraph crossed = associate(boundary, proxy);
+  // Edges crossed by the projected boundary strokes (the strokes themselves: no crease guide), and
+  // the vertices with interior stroke points.
+  AssociationOptions strokes_only;
+  strokes_only.guides.enabled = false;
+  const StrokeGraph crossed = associate(boundary, proxy, strokes_only);
   std::vector<int> crossed_vertices;
   TrimResult result;
   for (std::size_t e = 0; e < crossed.edges.size(); ++e)
@@ -145,7 +148,7 @@ TrimResult trim_open_surface(const TriMesh& proxy, const Sketch& sketch,
 
   std::vector<std::uint8_t> inside(nv, 0), outside(nv, 0);
   if (!interior.strokes.empty()) {
-    const StrokeGraph attached = associate(interior, proxy);
+    const StrokeGraph attached = associate(interior, proxy, strokes_only);
     for (int v = 0; v < nv; ++v)
       inside[v] = !attached.points_of(v).empty() &&
                   from_boundary[v] > options.inside_distance * diagonal;

@@ -8,6 +8,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
+#include "surfacing/segment/crease_guides.h"
 
 namespace sketchsurf {
 
@@ -116,7 +117,7 @@ bool AssociationOptions::valid(std::string* why) const {
   if (!(max_segment > 0) || !std::isfinite(max_segment))
     return fail("association max_segment must be positive");
   if (max_path_faces < 1) return fail("association max_path_faces must be at least 1");
-  return true;
+  return guides.valid(why);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -184,22 +185,29 @@ StrokeGraph associate(const Sketch& sketch, const TriMesh& proxy_in,
     dual.centroids.row(f.idx()) = (V.row(F(f.idx(), 0)) + V.row(F(f.idx(), 1)) + V.row(F(f.idx(), 2))) / 3.0;
   }
 
-  // Trace every stroke (in fixed chunks, so the result does not depend on the thread count).
+  // Trace every stroke, then every crease guide (in fixed chunks, so the result does not depend
+  // on the thread count). Guides mark the edges they cross but attach no sample.
   const ClosestFaceTree tree(V, F);
-  std::vector<const Stroke*> strokes;
+  std::vector<std::vector<V3>> lines;
   for (const auto& s : sketch.strokes)
-    if (!s.ignored && s.points.size() >= 2) strokes.push_back(&s);
-  std::vector<std::vector<Attachment>> attached(strokes.size());
-  std::vector<std::size_t> skipped(strokes.size(), 0);
+    if (!s.ignored && s.points.size() >= 2) lines.push_back(s.points);
+  const std::size_t stroke_lines = lines.size();
+  const double diagonal = sketch.bounding_box().diagonal();
+  for (const auto& g : guides_on_folds(crease_guides(sketch, diagonal, options.guides), V,
+                                       graph.normals, diagonal, options.guides))
+    lines.push_back({g[0], g[1]});
+  graph.guides = lines.size() - stroke_lines;
+  std::vector<std::vector<Attachment>> attached(lines.size());
+  std::vector<std::size_t> skipped(lines.size(), 0);
   const double max_len = options.max_segment * mean_edge_length;
-  const std::size_t chunks = std::min<std::size_t>(strokes.size(), 64);
+  const std::size_t chunks = std::min<std::size_t>(lines.size(), 64);
   parallel_for(0, chunks, options.threads, [&](std::size_t c) {
     PathSearch search(nf);
     std::vector<int> crossed;
-    for (std::size_t s = strokes.size() * c / chunks; s < strokes.size() * (c + 1) / chunks; ++s) {
+    for (std::size_t s = lines.size() * c / chunks; s < lines.size() * (c + 1) / chunks; ++s) {
       // Split long segments so that each traced path stays close to the stroke.
       std::vector<V3> pts;
-      const auto& sp = strokes[s]->points;
+      const auto& sp = lines[s];
       pts.push_back(sp[0]);
       for (std::size_t i = 1; i < sp.size(); ++i) {
         const double len = (sp[i] - sp[i - 1]).norm();
@@ -221,11 +229,16 @@ StrokeGraph associate(const Sketch& sketch, const TriMesh& proxy_in,
       }
     }
   });
+  std::vector<std::uint8_t> guided(ne, 0);
+  for (std::size_t s = stroke_lines; s < lines.size(); ++s) {
+    for (const auto& a : attached[s]) guided[a.edge] = 1;
+    attached[s].clear();
+  }
 
   // Samples per edge, in stroke order.
   std::vector<int> edge_offsets(ne + 1, 0);
   std::size_t total = 0;
-  for (std::size_t s = 0; s < strokes.size(); ++s) {
+  for (std::size_t s = 0; s < stroke_lines; ++s) {
     for (const auto& a : attached[s]) ++edge_offsets[a.edge + 1];
     total += attached[s].size();
     graph.skipped_segments += skipped[s];
@@ -243,7 +256,7 @@ StrokeGraph associate(const Sketch& sketch, const TriMesh& proxy_in,
   std::vector<std::vector<int>> per_vertex(nv);
   std::vector<int> new_index(total, -1);
   std::vector<V3> kept;
-  graph.crossed.assign(ne, 0);
+  graph.crossed = std::move(guided);
   for (int e = 0; e < ne; ++e) {
     if (edge_offsets[e] == edge_offsets[e + 1]) continue;
     graph.crossed[e] = 1;

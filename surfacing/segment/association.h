@@ -12,6 +12,7 @@
 
 #include "surfacing/closest_face.h"
 #include "surfacing/mesh.h"
+#include "surfacing/segment/crease_guides.h"
 #include "surfacing/sketch/sketch.h"
 
 namespace sketchsurf {
@@ -26,6 +27,8 @@ struct AssociationOptions {
                                    ///< are split before tracing, so paths follow the stroke (ours)
   int max_path_faces = 4096;       ///< a dual-graph search that visits more faces than this gives
                                    ///< up: the segment jumps between unconnected parts (ours)
+  CreaseGuideOptions guides;       ///< creases joined from the strokes' corners: their edges are
+                                   ///< crossed too, with no sample (ours)
   unsigned threads = 0;            ///< worker threads (0 = all); the result does not depend on it
   bool valid(std::string* why) const;
 };
@@ -37,13 +40,15 @@ struct StrokeGraph {
   Eigen::MatrixX3d normals;               ///< #V x 3 unit area-weighted vertex normals
   std::vector<std::array<int, 2>> edges;  ///< #E vertex pairs, in the proxy's edge order
   std::vector<double> weights;            ///< #E smoothness weights w_e (times c_e when scaled)
-  std::vector<std::uint8_t> crossed;      ///< #E 1 when a projected stroke segment crosses the edge
+  std::vector<std::uint8_t> crossed;      ///< #E 1 when a projected stroke segment or crease guide
+                                          ///< crosses the edge
   double edge_size_reference = 1.0;       ///< mean c_e the weights were divided by (App. C)
   Eigen::MatrixX3d points;                ///< #P x 3 stroke samples attached to some vertex
   std::vector<int> point_offsets;         ///< #V + 1; P_v = point_indices[offsets[v], offsets[v+1])
   std::vector<int> point_indices;         ///< indices into `points`
   std::size_t crossings = 0;              ///< (edge, sample) attachments made while tracing
   std::size_t skipped_segments = 0;       ///< segments whose endpoints were not connected on the proxy
+  std::size_t guides = 0;                 ///< crease guides traced (crease_guides.h)
 
   int vertex_count() const { return static_cast<int>(positions.rows()); }
   /// P_v: indices of the stroke points associated with vertex v.

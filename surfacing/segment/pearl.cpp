@@ -575,6 +575,7 @@ Segmenter::Segmenter(const Sketch& sketch, const TriMesh& proxy, const SegmentOp
   m.base_summary.graph_vertices = m.coarse.vertex_count;
   m.base_summary.proxy_vertices = m.graph.vertex_count();
   m.base_summary.associated_points = m.graph.association_count();
+  m.base_summary.crease_guides = m.graph.guides;
   progress.update("association", 1.0);
 
   // Initial models (§4.2): spectral clustering of the labelled graph for each k, one fit with

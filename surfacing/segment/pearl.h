@@ -82,6 +82,7 @@ struct SegmentationSummary {
   int graph_vertices = 0;        ///< vertices of the labelled (simplified) graph
   int proxy_vertices = 0;
   std::size_t associated_points = 0;  ///< N_p of Eq. 2
+  std::size_t crease_guides = 0;      ///< creases joined from stroke corners (crease_guides.h)
   double association_s = 0.0;    ///< wall time: association and graph simplification
   double init_s = 0.0;           ///< wall time: spectral clustering and initial fits
   double segmentation_s = 0.0;   ///< wall time: PEARL runs (all restarts) or the scribble re-run

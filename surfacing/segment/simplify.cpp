@@ -112,8 +112,14 @@ SimplifiedGraph simplify_graph(TriMesh mesh, const StrokeGraph& graph,
   if (nv != graph.vertex_count() || mesh.n_edges() != graph.edges.size())
     throw Error::usage("simplify_graph: the stroke graph was not built from this proxy");
 
+  // A vertex on a crossed edge stays (a stroke's vertices have points; a crease guide's need not).
+  std::vector<std::uint8_t> on_crossed(nv, 0);
+  for (std::size_t e = 0; e < graph.edges.size(); ++e)
+    if (graph.crossed[e])
+      for (int end : graph.edges[e]) on_crossed[end] = 1;
   auto movable = [&](TriMesh::VertexHandle v) {
-    return graph.point_offsets[v.idx()] == graph.point_offsets[v.idx() + 1] && !mesh.is_boundary(v);
+    return graph.point_offsets[v.idx()] == graph.point_offsets[v.idx() + 1] && !on_crossed[v.idx()] &&
+           !mesh.is_boundary(v);
   };
   std::vector<int> valence(nv);
   for (auto v : mesh.vertices()) valence[v.idx()] = static_cast<int>(mesh.valence(v));
@@ -182,7 +188,7 @@ SimplifiedGraph simplify_graph(TriMesh mesh, const StrokeGraph& graph,
     if (mesh.status(e).deleted()) continue;
     const auto h0 = mesh.halfedge_handle(e, 0);
     const int a = mesh.from_vertex_handle(h0).idx(), b = mesh.to_vertex_handle(h0).idx();
-    // Edges between two vertices with stroke points are untouched proxy edges; only those can be
+    // Edges between two vertices on crossed edges are untouched proxy edges; only those can be
     // crossed, so the proxy's flag of this edge index still applies.
     const bool crossed = graph.crossed[e.idx()] != 0;
     double weight = crossed ? association.crossed_weight : association.uncrossed_weight;

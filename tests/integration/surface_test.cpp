@@ -112,6 +112,31 @@ TEST(Surface, AnOverSketchedCubeHasSixFacesAndNoHole) {
   EXPECT_LT(r.report.stroke_distance.p95, 0.01);
 }
 
+// A box drawn as a hand in VR often draws it: sections round it and one stroke along the middle
+// of each long face, no edge. The sections' corners say where the edges are; the result is a box
+// with sharp edges, not a tube with rounded ones (what the region borders made of it before they
+// could follow the sections' corners).
+TEST(Surface, ABoxDrawnWithSectionsAndNoEdgeHasSharpEdges) {
+  const Eigen::Vector3d half(0.5, 0.2, 0.3);
+  Sketch sketch = testing::box_sections_sketch(half, {-0.5, -0.25, 0.0, 0.25, 0.5});
+  for (const Eigen::Vector3d& middle : {Eigen::Vector3d(0, half.y(), 0), Eigen::Vector3d(0, 0, half.z()),
+                                        Eigen::Vector3d(0, -half.y(), 0), Eigen::Vector3d(0, 0, -half.z())})
+    sketch.strokes.push_back(testing::polyline_stroke(
+        {middle - Eigen::Vector3d(half.x(), 0, 0), middle + Eigen::Vector3d(half.x(), 0, 0)}, false));
+  Params params;
+  params.segment.restarts = 2;
+  params.proxy.edge = 0.015;
+  const SurfaceResult r = Surfacer(params).run(sketch);
+  EXPECT_EQ(r.segmentation.summary.crease_guides, 16u);  // 4 edges x 4 gaps between sections
+  expect_closed_sphere(r.mesh);
+  const double diagonal = 2.0 * half.norm();
+  std::vector<double> off;
+  for (auto v : r.mesh.vertices()) off.push_back(testing::box_distance(to_eigen(r.mesh.point(v)), half));
+  std::sort(off.begin(), off.end());
+  EXPECT_LT(off[off.size() * 95 / 100], 0.001 * diagonal);
+  EXPECT_LT(off.back(), 0.005 * diagonal);
+}
+
 // Surfacing `sketch` with the default parameters is refused as depicting no surface, with a
 // message that says why and what to do (each of `phrases`).
 void expect_refused(const Sketch& sketch, const std::vector<std::string>& phrases) {

@@ -67,6 +67,27 @@ Stroke sample_curve(const std::function<Eigen::Vector3d(double)>& c, double t0, 
   return s;
 }
 
+Stroke polyline_stroke(std::vector<V3> corners, bool closed, double step) {
+  if (closed) corners.push_back(corners.front());
+  Stroke s;
+  for (std::size_t i = 1; i < corners.size(); ++i) {
+    const int n = std::max(1, static_cast<int>(std::ceil((corners[i] - corners[i - 1]).norm() / step)));
+    for (int k = 0; k < n; ++k)
+      s.points.push_back(corners[i - 1] + (corners[i] - corners[i - 1]) * (static_cast<double>(k) / n));
+  }
+  s.points.push_back(corners.back());
+  return s;
+}
+
+Sketch box_sections_sketch(const V3& half, const std::vector<double>& xs) {
+  Sketch sketch;
+  for (double x : xs)
+    sketch.strokes.push_back(polyline_stroke({V3(x, -half.y(), -half.z()), V3(x, -half.y(), half.z()),
+                                              V3(x, half.y(), half.z()), V3(x, half.y(), -half.z())},
+                                             true));
+  return sketch;
+}
+
 Sketch cube_sketch(double side, bool cross_strokes) {
   Sketch sketch;
   sketch.provenance = "generated cube";

@@ -15,6 +15,13 @@ namespace sketchsurf::testing {
 Stroke sample_curve(const std::function<Eigen::Vector3d(double)>& c, double t0, double t1,
                     double spacing);
 
+/// A polyline through `corners`, points `step` apart or closer, back to the first when `closed`.
+Stroke polyline_stroke(std::vector<Eigen::Vector3d> corners, bool closed, double step = 0.002);
+
+/// A box's sections only (no edge drawn): a closed rectangle at each x, corners at y = +-half.y(),
+/// z = +-half.z(); each starts and ends at a corner.
+Sketch box_sections_sketch(const Eigen::Vector3d& half, const std::vector<double>& xs);
+
 /// Axis-aligned cube centred at the origin with side `side`: one stroke along each of the 12
 /// edges, plus (when `cross_strokes`) one stroke across the middle of each of the 6 faces.
 /// Points about side/50 apart.

@@ -56,6 +56,7 @@ nlohmann::json report_json(const Segmentation& s, const SegmentOptions& o) {
           {"proxy_vertices", sum.proxy_vertices},
           {"graph_vertices", sum.graph_vertices},
           {"associated_points", sum.associated_points},
+      {"crease_guides", sum.crease_guides},
           {"parameters", {{"epsilon", o.epsilon}, {"w_smooth", o.w_smooth}, {"w_simp", o.w_simp},
                           {"mu", o.mu}, {"lambda", o.lambda}, {"seed", o.seed},
                           {"simplify", o.simplify}}},

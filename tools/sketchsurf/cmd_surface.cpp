@@ -121,6 +121,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
       {"proxy_vertices", seg.proxy_vertices},
       {"graph_vertices", seg.graph_vertices},
       {"associated_points", seg.associated_points},
+      {"crease_guides", seg.crease_guides},
       {"parameters", {{"epsilon", p.segment.epsilon}, {"w_smooth", p.segment.w_smooth},
                       {"w_simp", p.segment.w_simp}, {"mu", p.segment.mu}, {"lambda", p.segment.lambda},
                       {"seed", p.segment.seed}, {"simplify", p.segment.simplify},

@@ -115,6 +115,36 @@ TEST(Associate, WeightsAreLowOnCrossedEdges) {
   EXPECT_NEAR(mean_ratio / g.edges.size(), 1.0, 1e-9);
 }
 
+TEST(Associate, CreaseGuidesMakeTheUndrawnEdgesBetweenSectionsCheap) {
+  // A box drawn with three sections and no edge: between the sections, its edges are crossed by
+  // the guides joining the sections' corners, with no stroke point added.
+  const V3 half(0.2, 0.1, 0.15);
+  const TriMesh mesh = testing::rounded_box_mesh(4, half, 0.01);
+  const Sketch sketch = testing::box_sections_sketch(half, {-0.1, 0.0, 0.1});
+  AssociationOptions without;
+  without.guides.enabled = false;
+  const StrokeGraph plain = associate(sketch, mesh, without), guided = associate(sketch, mesh);
+  EXPECT_EQ(plain.guides, 0u);
+  EXPECT_EQ(guided.guides, 8u);
+  EXPECT_EQ(guided.points, plain.points);
+  EXPECT_EQ(guided.point_indices, plain.point_indices);
+  // Crossed edges near the middle of each box edge between two sections.
+  const double h = mean_edge_length(mesh);
+  auto crossed_near = [&](const StrokeGraph& g, const V3& p) {
+    for (std::size_t e = 0; e < g.edges.size(); ++e)
+      if (g.crossed[e] && (g.positions.row(g.edges[e][0]).transpose() - p).norm() < 1.5 * h) return true;
+    return false;
+  };
+  for (double x : {-0.05, 0.05})
+    for (double y : {-half.y(), half.y()})
+      for (double z : {-half.z(), half.z()}) {
+        EXPECT_FALSE(crossed_near(plain, V3(x, y, z)));
+        EXPECT_TRUE(crossed_near(guided, V3(x, y, z))) << x << " " << y << " " << z;
+      }
+  // The faces between sections stay uncrossed.
+  EXPECT_FALSE(crossed_near(guided, V3(0.05, 0.0, half.z())));
+}
+
 TEST(Associate, IndependentOfThreadsAndScale) {
   const TriMesh mesh = testing::rounded_box_mesh(3, V3(0.5, 0.5, 0.5), 0.1);
   const Sketch sketch = testing::cube_sketch(1.0);
