@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "surfacing/error.h"
 #include "surfacing/mesh.h"
@@ -97,15 +98,14 @@ TEST(CreaseGuides, OnlyJoinsAlongWhichTheSurfaceFoldsAreKept) {
 
 TEST(CreaseGuides, InvalidOptionsAreUsageErrors) {
   const Sketch sketch = sections({0.0});
-  CreaseGuideOptions o;
-  o.min_turn = 160;
-  EXPECT_THROW(crease_guides(sketch, 1.0, o), Error);
-  o = {};
-  o.max_gap = 0.0;
-  EXPECT_THROW(crease_guides(sketch, 1.0, o), Error);
-  o = {};
-  o.alignment = 90;
-  EXPECT_THROW(crease_guides(sketch, 1.0, o), Error);
+  const std::vector<std::function<void(CreaseGuideOptions&)>> breakers{
+      [](CreaseGuideOptions& o) { o.min_turn = 160; }, [](CreaseGuideOptions& o) { o.max_gap = 0.0; },
+      [](CreaseGuideOptions& o) { o.alignment = 90; }, [](CreaseGuideOptions& o) { o.min_fold = 95; }};
+  for (const auto& breaker : breakers) {
+    CreaseGuideOptions o;
+    breaker(o);
+    EXPECT_THROW(crease_guides(sketch, 1.0, o), Error);
+  }
 }
 
 }  // namespace
