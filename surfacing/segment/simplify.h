@@ -33,7 +33,7 @@ struct SimplifiedGraph {
 
 /// Greedy halfedge collapses on `proxy` (the mesh given to associate(), same units; a copy
 /// is collapsed: move the mesh in when it is no longer needed), never
-/// touching a vertex with stroke points or on a mesh border, lowest resulting valence first,
+/// touching a vertex with stroke points, on a crossed edge (a crease guide's) or on a mesh border, lowest resulting valence first,
 /// stopping when every remaining collapse would exceed options.max_valence. Weights of the coarse
 /// edges: the proxy's w_e for edges crossed by strokes (those are never collapsed), the uncrossed
 /// weight otherwise, times c_e / graph.edge_size_reference when `scale_by_edge_size` (App. C).
