@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 #include <queue>
+#include <span>
 
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
@@ -188,15 +189,15 @@ StrokeGraph associate(const Sketch& sketch, const TriMesh& proxy_in,
   // Trace every stroke, then every crease guide (in fixed chunks, so the result does not depend
   // on the thread count). Guides mark the edges they cross but attach no sample.
   const ClosestFaceTree tree(V, F);
-  std::vector<std::vector<V3>> lines;
+  std::vector<std::span<const V3>> lines;
   for (const auto& s : sketch.strokes)
-    if (!s.ignored && s.points.size() >= 2) lines.push_back(s.points);
+    if (!s.ignored && s.points.size() >= 2) lines.emplace_back(s.points);
   const std::size_t stroke_lines = lines.size();
   const double diagonal = sketch.bounding_box().diagonal();
-  for (const auto& g : guides_on_folds(crease_guides(sketch, diagonal, options.guides), V,
-                                       graph.normals, diagonal, options.guides))
-    lines.push_back({g[0], g[1]});
-  graph.guides = lines.size() - stroke_lines;
+  const auto guides = guides_on_folds(crease_guides(sketch, diagonal, options.guides), V,
+                                      graph.normals, diagonal, options.guides);
+  for (const auto& g : guides) lines.emplace_back(g);
+  graph.guides = guides.size();
   std::vector<std::vector<Attachment>> attached(lines.size());
   std::vector<std::size_t> skipped(lines.size(), 0);
   const double max_len = options.max_segment * mean_edge_length;
