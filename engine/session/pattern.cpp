@@ -6,15 +6,6 @@
 
 namespace sketchsurf::session {
 
-Stroke mirrored(const Stroke& stroke, const Plane& plane) {
-  Stroke out = stroke;
-  for (auto& p : out.points) p = plane.reflect(p);
-  const Eigen::Matrix3d m =
-      Eigen::Matrix3d::Identity() - 2.0 * plane.normal * plane.normal.transpose();
-  for (auto& q : out.orientations) q = Eigen::Quaterniond(m * q.toRotationMatrix() * m).normalized();
-  return out;
-}
-
 Stroke rotated(const Stroke& stroke, const RotationPattern& pattern, int step) {
   const double angle = 2.0 * M_PI * double(step) / double(pattern.count);
   const Eigen::AngleAxisd turn(angle, pattern.axis);

@@ -11,10 +11,6 @@
 
 namespace sketchsurf::session {
 
-/// The mirror image of `stroke` in `plane` (unit normal): points reflected, orientations
-/// M R M (M the reflection), so that they stay rotations and point along the reflected direction.
-Stroke mirrored(const Stroke& stroke, const Plane& plane);
-
 /// `stroke` turned by `step` * 360 / pattern.count degrees about the pattern's axis (right-hand
 /// rule): points and orientations.
 Stroke rotated(const Stroke& stroke, const RotationPattern& pattern, int step);

@@ -169,4 +169,12 @@ void resample(Sketch& sketch, double spacing) {
   for (auto& s : sketch.strokes) s = resample(s, spacing);
 }
 
+Stroke mirrored(const Stroke& stroke, const Plane& plane) {
+  Stroke out = stroke;
+  for (auto& p : out.points) p = plane.reflect(p);
+  const Eigen::Matrix3d m = Eigen::Matrix3d::Identity() - 2.0 * plane.normal * plane.normal.transpose();
+  for (auto& q : out.orientations) q = Eigen::Quaterniond(m * q.toRotationMatrix() * m).normalized();
+  return out;
+}
+
 }  // namespace sketchsurf

@@ -114,4 +114,8 @@ Stroke resample(const Stroke& stroke, double spacing);
 /// Resamples every stroke of the sketch in place.
 void resample(Sketch& sketch, double spacing);
 
+/// The mirror image of `stroke` in `plane` (unit normal): points reflected, orientations
+/// M R M (M the reflection), so that they stay rotations and point along the reflected direction.
+Stroke mirrored(const Stroke& stroke, const Plane& plane);
+
 }  // namespace sketchsurf
