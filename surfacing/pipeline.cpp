@@ -74,6 +74,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"prepare.tube_max_radius", setter([](Params& p) -> auto& { return p.prepare.tubes.max_radius; })},
       {"prepare.tube_sides", setter([](Params& p) -> auto& { return p.prepare.tubes.sides; })},
       {"prepare.open_rims", setter([](Params& p) -> auto& { return p.prepare.open_rims; })},
+      {"prepare.complete_half", setter([](Params& p) -> auto& { return p.prepare.complete_half; })},
       {"proxy.points", setter([](Params& p) -> auto& { return p.proxy.points; })},
       {"proxy.lambda", setter([](Params& p) -> auto& { return p.proxy.lambda; })},
       {"proxy.edge", setter([](Params& p) -> auto& { return p.proxy.edge; })},
@@ -215,6 +216,23 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
     throw Error(ErrorKind::Input, "all the sketch's points coincide; nothing to surface");
   if (params_.prepare.resample_spacing > 0.0)
     resample(sketch, params_.prepare.resample_spacing * report.diagonal);
+  // Half a symmetric object: its strokes stop on the mirror plane (found, or given with every
+  // stroke on its kept side). Its mirror image makes the whole, surfaced as any whole sketch
+  // (with a given plane, as a symmetric one).
+  if (params_.prepare.complete_half) {
+    const double tolerance = params_.prepare.mirror_detection.tolerance * report.diagonal;
+    const auto kept_side = [&](const Plane& plane) {
+      for (const Stroke& s : sketch.strokes)
+        for (const Eigen::Vector3d& p : s.points)
+          if (!s.ignored && plane.signed_distance(p) < -tolerance) return false;
+      return true;
+    };
+    if (!sketch.mirror) report.symmetry = detect_half_mirror(sketch, params_.prepare.mirror_detection);
+    if (report.symmetry || (sketch.mirror && kept_side(*sketch.mirror))) {
+      complete_half(sketch, report.symmetry ? report.symmetry->plane : *sketch.mirror, tolerance);
+      report.diagonal = sketch.bounding_box().diagonal();
+    }
+  }
   if (params_.prepare.consolidate)
     report.consolidation = consolidate_overdrawn(sketch, params_.prepare.consolidation);
   if (params_.prepare.ignore_decorations) {
@@ -242,7 +260,7 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
     report.openings = find_openings(sketch, params_.prepare.openings);
     for (const Opening& o : report.openings) sketch.strokes[o.stroke].boundary = true;
   }
-  if (!sketch.mirror) report.symmetry = detect_mirror(sketch, params_.prepare.mirror_detection);
+  if (!sketch.mirror && !report.symmetry) report.symmetry = detect_mirror(sketch, params_.prepare.mirror_detection);
   report.strokes = sketch.strokes.size();
   report.points = sketch.point_count();
   report.prepare_s = seconds_since(t);

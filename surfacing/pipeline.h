@@ -53,6 +53,9 @@ struct PrepareOptions {
                                     ///< boundary itself (openings.h)
   OpeningOptions openings;
   MirrorDetectOptions mirror_detection;  ///< finding a mirror plane the sketch was not given
+  bool complete_half = true;        ///< strokes that are one half of a symmetric object (they stop
+                                    ///< on a plane, or lie on one side of the plane given) get
+                                    ///< their mirror image, and the plane (symmetry.h)
   bool valid(std::string* why) const;
 };
 
@@ -85,7 +88,8 @@ struct SurfaceReport {
   std::string opening_failure;          ///< why the rims found could not be opened (the surface
                                         ///< was then kept closed); empty otherwise
   std::optional<DetectedMirror> symmetry;  ///< a mirror plane the strokes have, when the sketch
-                                           ///< was given none (reported, not applied)
+                                           ///< was given none (reported, not applied), or the
+                                           ///< plane of half a sketch (half_ends > 0; completed)
   double diagonal = 0.0;                ///< of the prepared sketch's bounding box, sketch units
   bool user_proxy = false;
   ProxyReport proxy;

@@ -137,6 +137,44 @@ TEST(Surface, ABoxDrawnWithSectionsAndNoEdgeHasSharpEdges) {
   EXPECT_LT(off.back(), 0.005 * diagonal);
 }
 
+// Half a box drawn, its long strokes stopping in the air on the plane x = 0: surfaced as the whole
+// box (the mirror image added), closed and sharp; as drawn when told not to complete it.
+TEST(Surface, HalfABoxDrawnUpToItsMirrorPlaneGivesTheWholeBox) {
+  const Eigen::Vector3d half(0.5, 0.2, 0.3);
+  Sketch sketch = testing::box_sections_sketch(half, {0.125, 0.25, 0.375, 0.5});
+  for (const Eigen::Vector3d& middle :
+       {Eigen::Vector3d(0, half.y(), 0), Eigen::Vector3d(0, 0, half.z()), Eigen::Vector3d(0, -half.y(), 0),
+        Eigen::Vector3d(0, 0, -half.z()), Eigen::Vector3d(0, half.y(), half.z()), Eigen::Vector3d(0, -half.y(), half.z()),
+        Eigen::Vector3d(0, half.y(), -half.z()), Eigen::Vector3d(0, -half.y(), -half.z())})
+    sketch.strokes.push_back(testing::polyline_stroke({middle, middle + Eigen::Vector3d(half.x(), 0, 0)}, false));
+  Params params;
+  params.segment.restarts = 2;
+  params.proxy.edge = 0.015;
+  const SurfaceResult r = Surfacer(params).run(sketch);
+  ASSERT_TRUE(r.report.symmetry.has_value());
+  EXPECT_EQ(r.report.symmetry->half_ends, 8);
+  EXPECT_NEAR(std::abs(r.report.symmetry->plane.normal.x()), 1.0, 1e-6);
+  expect_closed_sphere(r.mesh);
+  const double diagonal = 2.0 * half.norm();
+  std::vector<double> off;
+  double least_x = 0.0;
+  for (auto v : r.mesh.vertices()) {
+    off.push_back(testing::box_distance(to_eigen(r.mesh.point(v)), half));
+    least_x = std::min(least_x, r.mesh.point(v)[0]);
+  }
+  std::sort(off.begin(), off.end());
+  EXPECT_LT(off[off.size() * 95 / 100], 0.002 * diagonal);
+  EXPECT_LT(off.back(), 0.01 * diagonal);
+  EXPECT_NEAR(least_x, -half.x(), 0.005 * diagonal);
+
+  params.prepare.complete_half = false;
+  const SurfaceResult drawn = Surfacer(params).run(sketch);
+  EXPECT_FALSE(drawn.report.symmetry && drawn.report.symmetry->half_ends > 0);
+  double drawn_least_x = 0.0;
+  for (auto v : drawn.mesh.vertices()) drawn_least_x = std::min(drawn_least_x, drawn.mesh.point(v)[0]);
+  EXPECT_GT(drawn_least_x, -0.2 * half.x());
+}
+
 // Surfacing `sketch` with the default parameters is refused as depicting no surface, with a
 // message that says why and what to do (each of `phrases`).
 void expect_refused(const Sketch& sketch, const std::vector<std::string>& phrases) {

@@ -168,7 +168,8 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
       {"symmetry", rep.symmetry ? nlohmann::json{{"normal", {rep.symmetry->plane.normal.x(), rep.symmetry->plane.normal.y(),
                                                              rep.symmetry->plane.normal.z()}},
                                                  {"offset", rep.symmetry->plane.offset},
-                                                 {"distance", rep.symmetry->distance}}
+                                                 {"distance", rep.symmetry->distance},
+                                                 {"half_ends", rep.symmetry->half_ends}}
                                 : nlohmann::json()},
       {"timings", {{"prepare_s", rep.prepare_s},
                    {"proxy_s", rep.proxy_s},
@@ -298,8 +299,14 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     const double tiny = 1e-6 * result.report.diagonal;
     const std::string plane = num(m.normal.x(), 1e-4) + "," + num(m.normal.y(), 1e-4) + "," +
                               num(m.normal.z(), 1e-4) + "," + num(m.offset, tiny);
-    std::cerr << opt.sketch << ": note: the strokes are mirror-symmetric (plane a,b,c,d = " << plane
-              << "); --mirror " << plane << " surfaces one half and mirrors it\n";
+    if (result.report.symmetry->half_ends > 0)
+      std::cerr << opt.sketch << ": note: the strokes are one half of a symmetric object ("
+                << result.report.symmetry->half_ends << " of them stop on the plane a,b,c,d = " << plane
+                << "): surfaced with their mirror image; --param prepare.complete_half=0 surfaces them "
+                << "as drawn\n";
+    else
+      std::cerr << opt.sketch << ": note: the strokes are mirror-symmetric (plane a,b,c,d = " << plane
+                << "); --mirror " << plane << " surfaces one half and mirrors it\n";
   }
   if (!global.quiet)
     for (const std::string& warning : result.report.checks.warnings)
