@@ -227,7 +227,15 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
           if (!s.ignored && plane.signed_distance(p) < -tolerance) return false;
       return true;
     };
-    if (!sketch.mirror) report.symmetry = detect_half_mirror(sketch, params_.prepare.mirror_detection);
+    if (!sketch.mirror) {
+      // Strokes that hang by one end (a table's legs drawn as lines) stop in the air too; they are
+      // not half of a surface.
+      Sketch probe = sketch;
+      if (params_.prepare.ignore_decorations)
+        for (const Decoration& d : find_decorations(probe, params_.prepare.decorations))
+          probe.strokes[d.stroke].ignored = true;
+      report.symmetry = detect_half_mirror(probe, params_.prepare.mirror_detection);
+    }
     if (report.symmetry || (sketch.mirror && kept_side(*sketch.mirror))) {
       complete_half(sketch, report.symmetry ? report.symmetry->plane : *sketch.mirror, tolerance);
       report.diagonal = sketch.bounding_box().diagonal();

@@ -175,6 +175,25 @@ TEST(Surface, HalfABoxDrawnUpToItsMirrorPlaneGivesTheWholeBox) {
   EXPECT_GT(drawn_least_x, -0.2 * half.x());
 }
 
+// A table whose legs are single lines: they stop in the air on one plane, square to it, like half
+// a sketch's strokes, but hang by one end: legs (ignored), not half of a surface to mirror.
+TEST(Surface, ATableWithLineLegsIsNotTakenForHalfASketch) {
+  Sketch sketch = testing::cube_sketch(1.0, true);
+  for (Stroke& s : sketch.strokes)
+    for (Eigen::Vector3d& p : s.points) p.y() *= 0.15;
+  for (double x : {-0.5, 0.5})
+    for (double z : {-0.5, 0.5})
+      sketch.strokes.push_back(testing::polyline_stroke({{x, -0.075, z}, {x, -0.8, z}}, false));
+  Params params;
+  params.segment.restarts = 2;
+  const SurfaceResult r = Surfacer(params).run(sketch);
+  EXPECT_FALSE(r.report.symmetry && r.report.symmetry->half_ends > 0);
+  EXPECT_EQ(r.report.decorations.size(), 4u);
+  double least_y = 0.0;
+  for (auto v : r.mesh.vertices()) least_y = std::min(least_y, static_cast<double>(r.mesh.point(v)[1]));
+  EXPECT_GT(least_y, -0.2);  // the slab, not a table mirrored under its legs
+}
+
 // Surfacing `sketch` with the default parameters is refused as depicting no surface, with a
 // message that says why and what to do (each of `phrases`).
 void expect_refused(const Sketch& sketch, const std::vector<std::string>& phrases) {
