@@ -55,7 +55,8 @@ struct PrepareOptions {
   MirrorDetectOptions mirror_detection;  ///< finding a mirror plane the sketch was not given
   bool complete_half = true;        ///< strokes that are one half of a symmetric object (they stop
                                     ///< on a plane, or lie on one side of the plane given) get
-                                    ///< their mirror image, and the plane (symmetry.h)
+                                    ///< their mirror image (symmetry.h): a found half is surfaced
+                                    ///< as a whole, a given plane's as a symmetric sketch
   bool valid(std::string* why) const;
 };
 

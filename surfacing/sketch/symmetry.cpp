@@ -169,7 +169,7 @@ std::optional<DetectedMirror> detect_half_mirror(const Sketch& sketch, const Mir
   std::optional<DetectedMirror> best;
   for (const FreeEnd& seed : ends) {
     // The plane through the seed normal to its arrival, normal toward the strokes; refitted to
-    // the ends it gathers (their mean arrival, their mean position), twice.
+    // the ends it gathers, twice.
     Plane plane{-seed.arrival, seed.arrival.dot(seed.position)};
     std::vector<const FreeEnd*> on;
     for (int round = 0; round < 3; ++round) {

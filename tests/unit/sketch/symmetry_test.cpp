@@ -139,7 +139,7 @@ TEST(Symmetry, WholeShapesAreNotHalves) {
   EXPECT_FALSE(detect_half_mirror(testing::torus_sketch()).has_value());
   EXPECT_FALSE(detect_half_mirror(testing::cup_sketch()).has_value());
   EXPECT_FALSE(detect_half_mirror(wandering(12, 5)).has_value());
-  // A box open at the bottom: its side edges stop on the bottom's edges, not in the air.
+  // A box's edges only: its side edges stop on the bottom's edges, not in the air.
   Sketch open_box = testing::cube_sketch(1.0, false);
   EXPECT_FALSE(detect_half_mirror(open_box).has_value());
   // Too few free ends on the plane: the half box with only two of its eight long strokes.
