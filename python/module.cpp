@@ -70,6 +70,14 @@ py::dict report_dict(const SurfaceResult& r) {
   for (const Decoration& dec : rep.decorations) ignored.push_back(dec.id);
   d["ignored_strokes"] = ignored;
   d["tubes"] = rep.tubes;
+  if (rep.symmetry) {
+    const Plane& plane = rep.symmetry->plane;
+    d["symmetry"] = py::dict(py::arg("normal") = std::vector<double>{plane.normal.x(), plane.normal.y(), plane.normal.z()},
+                             py::arg("offset") = plane.offset, py::arg("distance") = rep.symmetry->distance,
+                             py::arg("half_ends") = rep.symmetry->half_ends);
+  } else {
+    d["symmetry"] = py::none();
+  }
   d["timings"] = py::dict(py::arg("prepare_s") = rep.prepare_s, py::arg("proxy_s") = rep.proxy_s,
                           py::arg("segment_s") = rep.segment_s, py::arg("extraction_s") = rep.extraction_s,
                           py::arg("checks_s") = rep.checks_s, py::arg("total_s") = rep.total_s);

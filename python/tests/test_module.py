@@ -95,3 +95,23 @@ def test_writes_meshes(tmp_path):
     assert (tmp_path / "t.ply").stat().st_size > 0
     with pytest.raises(ValueError, match="names vertex 7"):
         sketchsurf.write_mesh(str(tmp_path / "bad.ply"), V, np.array([[0, 1, 7]]))
+
+
+def test_half_a_sketch_is_completed_and_reported():
+    """Half a box (x from 0 to 0.5), its long strokes stopping in the air at x = 0: the whole box."""
+    def line(a, b, n=60):
+        return np.linspace(a, b, n)
+
+    strokes = []
+    for x in (0.25, 0.5):
+        corners = [(x, -0.2, -0.3), (x, -0.2, 0.3), (x, 0.2, 0.3), (x, 0.2, -0.3), (x, -0.2, -0.3)]
+        strokes.append(np.vstack([line(a, b, 30)[:-1] for a, b in zip(corners, corners[1:])] + [np.array([corners[-1]])]))
+    for y, z in [(0.2, 0), (-0.2, 0), (0, 0.3), (0, -0.3), (0.2, 0.3), (0.2, -0.3), (-0.2, 0.3), (-0.2, -0.3)]:
+        strokes.append(line((0, y, z), (0.5, y, z)))
+    V, F, labels, sharp, report = sketchsurf.surface(strokes, QUICK)
+    assert report["symmetry"]["half_ends"] == 8
+    assert abs(abs(report["symmetry"]["normal"][0]) - 1) < 1e-6
+    assert V[:, 0].min() < -0.45 and V[:, 0].max() > 0.45
+    *_, as_drawn = sketchsurf.surface(strokes, {**QUICK, "prepare.complete_half": 0})
+    assert as_drawn["symmetry"] is None or as_drawn["symmetry"]["half_ends"] == 0
+
