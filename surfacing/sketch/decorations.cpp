@@ -5,51 +5,13 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "surfacing/sketch/stroke_point_grid.h"
+
 namespace sketchsurf {
 
 namespace {
 
 using V3 = Eigen::Vector3d;
-
-// Points of every stroke in a uniform grid of cell `cell`, for "is a point of another stroke
-// within r <= cell" queries.
-class StrokePointGrid {
- public:
-  StrokePointGrid(const Sketch& sketch, double cell) : cell_(cell) {
-    for (std::size_t s = 0; s < sketch.strokes.size(); ++s)
-      for (const V3& p : sketch.strokes[s].points) cells_[key(p)].push_back({p, s});
-  }
-
-  /// The strokes other than `self` with a point within `r` of p, sorted, unique.
-  std::vector<std::size_t> strokes_near(const V3& p, std::size_t self, double r) const {
-    std::vector<std::size_t> out;
-    const Eigen::Vector3i c = index(p);
-    const int reach = static_cast<int>(std::ceil(r / cell_));
-    for (int dx = -reach; dx <= reach; ++dx)
-      for (int dy = -reach; dy <= reach; ++dy)
-        for (int dz = -reach; dz <= reach; ++dz) {
-          const auto it = cells_.find(cell_key(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == cells_.end()) continue;
-          for (const auto& [q, s] : it->second)
-            if (s != self && (q - p).squaredNorm() <= r * r) out.push_back(s);
-        }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
-
- private:
-  Eigen::Vector3i index(const V3& p) const { return (p / cell_).array().floor().cast<int>(); }
-  static std::uint64_t cell_key(const Eigen::Vector3i& c) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.x())) * 73856093ull) ^
-           (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.y())) * 19349663ull) ^
-           (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.z())) * 83492791ull);
-  }
-  std::uint64_t key(const V3& p) const { return cell_key(index(p)); }
-
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<std::pair<V3, std::size_t>>> cells_;
-};
 
 std::size_t find_root(std::vector<std::size_t>& parent, std::size_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];

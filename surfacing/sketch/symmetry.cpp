@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "surfacing/closest_face.h"
+#include "surfacing/sketch/stroke_point_grid.h"
 #include "surfacing/sketch/stroke_segments.h"
 
 namespace sketchsurf {
@@ -108,30 +109,10 @@ struct FreeEnd {
   V3 arrival;
 };
 
-// Whether a segment of a non-ignored stroke other than `self` passes within `reach` of p
-// (`boxes`: each stroke's bounding box, to skip the far ones).
-bool near_others(const Sketch& sketch, const std::vector<BoundingBox>& boxes, std::size_t self, const V3& p,
-                 double reach) {
-  for (std::size_t s = 0; s < sketch.strokes.size(); ++s) {
-    if (s == self || sketch.strokes[s].ignored || boxes[s].empty()) continue;
-    if ((boxes[s].min - p).cwiseMax(p - boxes[s].max).cwiseMax(V3::Zero()).norm() > reach) continue;
-    const auto& q = sketch.strokes[s].points;
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      const V3& a = q[i];
-      const V3 ab = q[std::min(i + 1, q.size() - 1)] - a;
-      const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-      if ((a + t * ab - p).norm() <= reach) return true;
-    }
-  }
-  return false;
-}
-
 std::vector<FreeEnd> free_ends(const Sketch& sketch, double diagonal, const MirrorDetectOptions& options) {
   std::vector<FreeEnd> ends;
   const double reach = options.free_end * diagonal;
-  std::vector<BoundingBox> boxes(sketch.strokes.size());
-  for (std::size_t s = 0; s < sketch.strokes.size(); ++s)
-    for (const V3& p : sketch.strokes[s].points) boxes[s].extend(p);
+  const StrokePointGrid grid(sketch, std::max(reach, 1e-6 * diagonal), /*with_ignored=*/false);
   for (std::size_t s = 0; s < sketch.strokes.size(); ++s) {
     const Stroke& stroke = sketch.strokes[s];
     const auto& p = stroke.points;
@@ -148,7 +129,7 @@ std::vector<FreeEnd> free_ends(const Sketch& sketch, double diagonal, const Mirr
         run += (q - back).norm();
         back = q;
       }
-      if ((end - back).norm() > 0.0 && !near_others(sketch, boxes, s, end, reach))
+      if ((end - back).norm() > 0.0 && grid.strokes_near(end, s, reach).empty())
         ends.push_back({end, (end - back).normalized()});
     }
   }

@@ -1,0 +1,34 @@
+#pragma once
+// The strokes' points in a uniform grid: "which other strokes come within r of this point" in
+// constant time per query, for the tests that ask whether a stroke end is free or touches others
+// (decorations.h, symmetry.h). Points, not segments: strokes should be resampled finer than r.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "surfacing/sketch/sketch.h"
+
+namespace sketchsurf {
+
+class StrokePointGrid {
+ public:
+  /// The points of every stroke (of the non-ignored ones only, unless `with_ignored`) in cells of
+  /// size `cell`; queries are cheapest for radii up to `cell`.
+  StrokePointGrid(const Sketch& sketch, double cell, bool with_ignored = true);
+
+  /// The strokes other than `self` with a point within `r` of p, sorted, unique.
+  std::vector<std::size_t> strokes_near(const Eigen::Vector3d& p, std::size_t self, double r) const;
+
+ private:
+  Eigen::Vector3i index(const Eigen::Vector3d& p) const;
+  static std::uint64_t cell_key(const Eigen::Vector3i& c);
+
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::pair<Eigen::Vector3d, std::size_t>>> cells_;
+};
+
+}  // namespace sketchsurf
