@@ -104,6 +104,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.outline_blend", setter([](Params& p) -> auto& { return p.proxy.outline_blend; })},
       {"proxy.outline_most", setter([](Params& p) -> auto& { return p.proxy.outline_most; })},
       {"proxy.window_value", setter([](Params& p) -> auto& { return p.proxy.window_value; })},
+      {"proxy.window_undrawn", setter([](Params& p) -> auto& { return p.proxy.window_undrawn; })},
       {"proxy.window_reach", setter([](Params& p) -> auto& { return p.proxy.window_reach; })},
       {"proxy.window_points", setter([](Params& p) -> auto& { return p.proxy.window_points; })},
       {"proxy.bridge_value", setter([](Params& p) -> auto& { return p.proxy.bridge_value; })},

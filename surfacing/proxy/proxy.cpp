@@ -558,6 +558,8 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(far_most > 0.0 && far_most <= 1.0)) return fail("proxy far_most must be in (0, 1]");
   if (!(window_value >= 0.0 && window_value < 0.5))
     return fail("proxy window_value must be in [0, 0.5)");
+  if (!(window_undrawn >= 0.0 && window_undrawn < 0.5))
+    return fail("proxy window_undrawn must be in [0, 0.5)");
   if (!(window_reach >= 0.0 && window_reach <= 2.0))
     return fail("proxy window_reach must be in [0, 2]");
   if (!(window_points >= 0 && window_points <= 100000))
@@ -669,6 +671,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     long genus = 0;
     std::size_t components = 0, evaluations = 0;
     std::size_t windows = 0, bridges = 0, necks = 0;  // bumps kept
+    std::vector<Bump> undrawn;  // membranes over the wider windows no stroke depicts, not applied
   };
   // The strokes' part of every field without the outline cut: the same for every solve.
   GridMemo caps(box.min, options.cell);
@@ -702,6 +705,35 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   search.bridge_most = options.bridge_value;
   search.neck_most = options.neck_value;
   search.window_aliased = 0.5 * options.cell;
+  // Windows closed where that removes handles without splitting the surface; then bridges
+  // built where that splits nothing (a bridge adds a handle or joins two parts); then necks cut
+  // where that splits the surface or removes handles, adds none, and loses no part (at most
+  // kNeckLoss of the area: more, and a part fell away as a speck).
+  enum class Kind { kWindows, kBridges, kNecks };
+  const auto try_bumps = [&](Candidate& c, MeshTopology& topology, const std::vector<Bump>& bumps,
+                             Kind kind) {
+    if (bumps.empty()) return false;
+    auto bumped = std::make_unique<ConfinedField>(*c.field);
+    std::vector<Bump> all = c.field->bumps();
+    all.insert(all.end(), bumps.begin(), bumps.end());
+    bumped->set_bumps(std::move(all));
+    TriangleArrays mesh;
+    const MeshTopology with = polygonise(*bumped, caps, *c.rbf, mesh, c.evaluations);
+    if (mesh.F.rows() == 0) return false;
+    if (kind == Kind::kNecks) {
+      if (with.genus > topology.genus ||
+          !(with.components > topology.components || with.genus < topology.genus) ||
+          surface_area(mesh) < (1.0 - kNeckLoss) * surface_area(c.mesh))
+        return false;
+    } else if (with.components > topology.components ||
+               (kind == Kind::kWindows && with.genus >= topology.genus)) {
+      return false;
+    }
+    c.field = std::move(bumped);
+    c.mesh = std::move(mesh);
+    topology = with;
+    return true;
+  };
   const auto solve = [&](double lambda) {
     auto t = Clock::now();
     Candidate c;
@@ -721,51 +753,25 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     // wall between strokes, a gap between two parts a stroke runs across, a few cells from them.
     SaddleSearch here = search;
     here.window_most = topology.genus > 0 ? options.window_value : 0.0;
+    here.window_undrawn_most = topology.genus > 0 ? options.window_undrawn : 0.0;
     const Saddles saddles = find_saddles(c.vipss->function, c.field->scale(), {}, unit,
                                          stroke_grid, box, here, threads);
-    // Windows closed where that removes handles without splitting the surface; then bridges
-    // built where that splits nothing (a bridge adds a handle or joins two parts); then necks cut
-    // where that splits the surface or removes handles, adds none, and loses no part (at most
-    // kNeckLoss of the area: more, and a part fell away as a speck).
-    enum class Kind { kWindows, kBridges, kNecks };
-    const auto try_bumps = [&](const std::vector<Bump>& bumps, Kind kind) {
-      if (bumps.empty()) return false;
-      auto bumped = std::make_unique<ConfinedField>(*c.field);
-      std::vector<Bump> all = c.field->bumps();
-      all.insert(all.end(), bumps.begin(), bumps.end());
-      bumped->set_bumps(std::move(all));
-      TriangleArrays mesh;
-      const MeshTopology with = polygonise(*bumped, caps, *c.rbf, mesh, c.evaluations);
-      if (mesh.F.rows() == 0) return false;
-      if (kind == Kind::kNecks) {
-        if (with.genus > topology.genus ||
-            !(with.components > topology.components || with.genus < topology.genus) ||
-            surface_area(mesh) < (1.0 - kNeckLoss) * surface_area(c.mesh))
-          return false;
-      } else if (with.components > topology.components ||
-                 (kind == Kind::kWindows && with.genus >= topology.genus)) {
-        return false;
-      }
-      c.field = std::move(bumped);
-      c.mesh = std::move(mesh);
-      topology = with;
-      return true;
-    };
-    if (try_bumps(saddles.windows, Kind::kWindows)) {
+    if (try_bumps(c, topology, saddles.windows, Kind::kWindows)) {
       c.windows = saddles.windows.size();
       // Windows left open round the membranes (a membrane is flat; a curved wall leaves it) are
       // saddles of the lowered field: searched again while that removes handles.
       SaddleSearch again = here;
-      again.bridge_most = again.neck_most = 0.0;
+      again.bridge_most = again.neck_most = again.window_undrawn_most = 0.0;
       for (int round = 0; round < kWindowRounds && topology.genus > 0; ++round) {
         const Saddles more = find_saddles(c.vipss->function, c.field->scale(), c.field->bumps(),
                                           unit, stroke_grid, box, again, threads);
-        if (!try_bumps(more.windows, Kind::kWindows)) break;
+        if (!try_bumps(c, topology, more.windows, Kind::kWindows)) break;
         c.windows += more.windows.size();
       }
     }
-    if (try_bumps(saddles.bridges, Kind::kBridges)) c.bridges = saddles.bridges.size();
-    if (try_bumps(saddles.necks, Kind::kNecks)) c.necks = saddles.necks.size();
+    c.undrawn = saddles.undrawn;
+    if (try_bumps(c, topology, saddles.bridges, Kind::kBridges)) c.bridges = saddles.bridges.size();
+    if (try_bumps(c, topology, saddles.necks, Kind::kNecks)) c.necks = saddles.necks.size();
     if (c.mesh.F.rows() > 0) {
       c.far = far_fraction(c.mesh, stroke_grid, options.far_distance);
       c.genus = topology.genus;
@@ -796,6 +802,21 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (i == 1 && c.mesh.F.rows() > 0 && c.far >= options.far_tie) consider(solve(ladder[0]));
     consider(std::move(c));
     if (closed) break;
+  }
+  // The wider windows that no stroke depicts are closed on the kept solve only: on every solve
+  // they would change the choice above, which weighs handles (a smoother solve that webs a chair's
+  // back, its last window closed, would win over one that keeps the back open).
+  if (kept.genus > 0 && !kept.undrawn.empty()) {
+    const auto t = Clock::now();
+    MeshTopology topology;
+    topology.genus = kept.genus;
+    topology.components = kept.components;
+    if (try_bumps(kept, topology, kept.undrawn, Kind::kWindows)) {
+      kept.windows += kept.undrawn.size();
+      kept.genus = topology.genus;
+      kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance);
+    }
+    r.polygonize_seconds += seconds_since(t);
   }
   // The outline cut, where the strokes frame a surface (a sketch whose surface lies mostly far
   // from every stroke, a flower's petals, is left whole: cut, it falls apart into pieces that no

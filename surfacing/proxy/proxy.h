@@ -80,6 +80,14 @@ struct ProxyOptions {
                                 ///< closed by a membrane: a thin plate's slots are long, not round
   double window_reach = 0.6;    ///< ... at most this far from the saddle (fraction of diagonal)
   int window_points = 400;      ///< ... with at most this many membrane bumps per window
+  double window_undrawn = 0.06;  ///< wider windows, saddle values in [window_value, this)
+                                 ///< (fraction of diagonal; 0 = off), are closed as well where no
+                                 ///< stroke depicts an opening: none winds round it (a hole's
+                                 ///< rim, a handle's C) and none runs along it all round (a bore's
+                                 ///< wall), and the hole spans the gap between the strokes
+                                 ///< round it (a mug's floor between sparse strokes). Tried on
+                                 ///< the solve the ladder keeps, kept only when it removes
+                                 ///< handles and splits nothing
   double bridge_value = 0.025;  ///< gaps between two parts of the surface that nearly touch
                                 ///< (saddles of the distance-scaled VIPSS function with a value in
                                 ///< (0, bridge_value), a maximum along the gap and a minimum

@@ -235,7 +235,7 @@ Bump window_bump(const Saddle& s, double h, double across, double aliased) {
 // bump with
 // radius 2 h in the wall's plane that lowers s f to zero at `half` either side of the mid-surface
 // (the membrane's faces). `taken` marks the grid cells that already hold a bump.
-void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& search,
+void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& search, double most,
                   std::vector<char>& taken, std::vector<Bump>& out) {
   const double h = grid.step(), half = 0.35 * search.across;
   const Eigen::Vector3d axis = s.axes.col(2);
@@ -256,7 +256,7 @@ void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& s
       if (v < best) best = v, at = y;
     }
     const Eigen::Vector3d from = at - s.centre;
-    if (!(best > 0.0 && best < search.window_most) || from.norm() > search.window_reach ||
+    if (!(best > 0.0 && best < most) || from.norm() > search.window_reach ||
         std::abs(from.dot(axis)) > 0.5 * search.across ||
         !(grid.value(at + (h / 4.0) * axis) > best && grid.value(at - (h / 4.0) * axis) > best) ||
         !open_across(grid, at, axis, search.across))
@@ -277,6 +277,69 @@ void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& s
     out.push_back(b);
     ++added;
   }
+}
+
+// The strokes round a window-shaped saddle, within `reach` of it, seen along its across axis (the
+// opening's axis) and split into 12 equal sectors round it.
+struct AroundSaddle {
+  bool winds = false;  ///< one stroke turns at least kDepictedTurn round the axis
+  int sectors = 0;     ///< sectors that hold a stroke
+  int along = 0;       ///< sectors that hold a stroke running within 45 degrees of the axis
+};
+
+constexpr double kDepictedTurn = 3.5;
+
+AroundSaddle strokes_around(const Saddle& s, const Sketch& unit, double reach) {
+  const Eigen::Vector3d axis = s.axes.col(2), u = s.axes.col(0), v = s.axes.col(1);
+  const auto angle_of = [&](const Eigen::Vector3d& d) { return std::atan2(d.dot(v), d.dot(u)); };
+  const auto sector_of = [&](const Eigen::Vector3d& d) {
+    return std::min(11, static_cast<int>((angle_of(d) + M_PI) / (2.0 * M_PI) * 12.0));
+  };
+  std::array<char, 12> any{}, along{};
+  AroundSaddle out;
+  for (const Stroke& stroke : unit.strokes) {
+    if (stroke.ignored) continue;
+    double turn = 0.0;  // along the current stretch of the stroke within reach
+    for (std::size_t i = 1; i < stroke.points.size(); ++i) {
+      const Eigen::Vector3d a = stroke.points[i - 1] - s.centre, b = stroke.points[i] - s.centre;
+      if (a.norm() > reach || b.norm() > reach) {
+        turn = 0.0;
+        continue;
+      }
+      turn += std::remainder(angle_of(b) - angle_of(a), 2.0 * M_PI);
+      out.winds = out.winds || std::abs(turn) >= kDepictedTurn;
+      const Eigen::Vector3d t = b - a;
+      const int sector = sector_of(0.5 * (a + b));
+      any[sector] = 1;
+      if (std::abs(t.dot(axis)) > std::sqrt(0.5) * t.norm()) along[sector] = 1;
+    }
+  }
+  out.sectors = static_cast<int>(std::count(any.begin(), any.end(), 1));
+  out.along = static_cast<int>(std::count(along.begin(), along.end(), 1));
+  return out;
+}
+
+// A wider window-shaped saddle is a window to close when, within twice the distance from it to
+// the nearest stroke:
+// - the strokes stand round it (in at least kSurrounded of the 12 sectors): a window through a
+//   wall lies in a cell of the wall's strokes, where a hole in a web that VIPSS stretched between
+//   two parts (a chair's legs) has open space on a side;
+// - the nearest stroke lies within kSpanned times its value (the hole's radius): the hole spans
+//   the gap between the strokes (windows through double walls 1.5-2.1), not a small hole in a web
+//   far from every stroke (a chair back's frame);
+// - and they do not depict an opening: no stroke winds kDepictedTurn round the opening's axis (a
+//   hole's drawn rim, a handle's C, a torus's inner circle), and the strokes that run along the
+//   axis stand in fewer than kWallSectors sectors (a bore drawn by its wall's lines, its rims left
+//   out, stands all round it). The strokes that frame a window lie in the wall, passing by it.
+constexpr int kSurrounded = 8;
+constexpr double kSpanned = 2.5;
+constexpr int kWallSectors = 7;
+
+bool undrawn_window(const Saddle& s, const Sketch& unit, const PointGrid& strokes) {
+  const double nearest = std::sqrt(strokes.nearest(s.centre).second);
+  if (nearest > kSpanned * s.value) return false;
+  const AroundSaddle around = strokes_around(s, unit, 2.0 * nearest);
+  return around.sectors >= kSurrounded && !around.winds && around.along < kWallSectors;
 }
 
 // Where the strokes cross the plane through the saddle normal to its negative curvature (a gap's
@@ -347,7 +410,7 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>&
                      const Sketch& unit, const PointGrid& strokes, const BoundingBox& box,
                      const SaddleSearch& search, unsigned threads) {
   Saddles found;
-  const double most = std::max(search.window_most, search.bridge_most);
+  const double most = std::max({search.window_most, search.window_undrawn_most, search.bridge_most});
   if (!(most > 0.0) && !(search.neck_most > 0.0)) return found;
   const SearchGrid grid(f, scale, lowered, strokes, box, search, threads);
   const double h = grid.step();
@@ -366,19 +429,22 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>&
     Saddle s;
     if (!newton(grid, grid.point(c[0], c[1], c[2]), s) || !(s.value > -search.window_aliased))
       continue;
-    const bool window = search.window_most > 0.0 && s.value < search.window_most &&
-                        s.curvature[1] < 0.0 && s.curvature[2] > 0.0 &&
+    const bool shaped = s.curvature[1] < 0.0 && s.curvature[2] > 0.0 &&
                         open_across(grid, s.centre, s.axes.col(2), search.across);
+    const bool window = shaped && search.window_most > 0.0 && s.value < search.window_most;
+    const bool undrawn = shaped && !window && s.value < search.window_undrawn_most &&
+                         undrawn_window(s, unit, strokes);
     const bool gap = s.value > 0.0 && s.value < search.bridge_most && s.curvature[0] < 0.0 &&
                      s.curvature[1] > 0.0;
-    if (!window && !gap) continue;
+    if (!window && !undrawn && !gap) continue;
     if (!take(s.centre)) continue;
-    if (window) {
-      const std::size_t first = found.windows.size();
-      found.windows.push_back(window_bump(s, h, search.across, search.window_aliased));
-      flood_window(grid, s, search, taken, found.windows);
-      for (std::size_t i = first + 1; i < found.windows.size(); ++i)
-        seen.push_back(found.windows[i].centre);  // a saddle in a flooded region is that window's
+    if (window || undrawn) {
+      std::vector<Bump>& out = window ? found.windows : found.undrawn;
+      const std::size_t first = out.size();
+      out.push_back(window_bump(s, h, search.across, search.window_aliased));
+      flood_window(grid, s, search, window ? search.window_most : s.value + 0.25 * h, taken, out);
+      for (std::size_t i = first + 1; i < out.size(); ++i)
+        seen.push_back(out[i].centre);  // a saddle in a flooded region is that window's
     } else {
       Bump b;
       if (bridge(grid, s, unit, b)) found.bridges.push_back(b);

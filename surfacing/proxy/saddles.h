@@ -36,6 +36,8 @@ struct SaddleSearch {
   double step = 0.02;       ///< grid spacing h
   double window_most = 0.025;  ///< windows: saddle values in (-window_aliased, window_most);
                                ///< 0 = none
+  double window_undrawn_most = 0.0;  ///< wider windows: saddle values in [window_most, this)
+                                    ///< where no stroke depicts an opening; 0 = none
   double window_aliased = 0.0;  ///< a window saddle just inside the surface (the double wall's
                                 ///< inside layer thinner than the polygonisation's cells there)
                                 ///< opens in the polygonised surface all the same
@@ -49,6 +51,7 @@ struct SaddleSearch {
 /// What find_saddles() found, as bumps to lower the field by.
 struct Saddles {
   std::vector<Bump> windows;  ///< membranes over windows through thin double walls
+  std::vector<Bump> undrawn;  ///< membranes over wider windows that no stroke depicts
   std::vector<Bump> bridges;  ///< connections across gaps that strokes cross
   std::vector<Bump> necks;    ///< cuts through thin connections that no stroke crosses
 };
@@ -64,7 +67,13 @@ struct Saddles {
 ///   bump: together a membrane about as thick as the walls (the slot of a thin plate is long and
 ///   flat-bottomed, not an ellipse). A window saddle just inside the surface (value above
 ///   -window_aliased: the inside layer thinner than the polygonisation's cells) counts too: the
-///   polygonised surface opens there all the same.
+///   polygonised surface opens there all the same. A wider window (value in [window_most,
+///   window_undrawn_most)) is one too where it lies in a cell of the strokes and no stroke depicts
+///   an opening: within twice the saddle's distance to the nearest stroke (at most 2.5 times its
+///   value: the hole spans the gap between them), strokes stand all round the line through it
+///   along its across axis, none winds round that line (a hole's rim, a handle's C) and those
+///   running along it do not stand all round it (a bore drawn by its wall's lines). Those go to
+///   `undrawn`, their region flooded up to the saddle's value.
 /// - a bridge: one negative curvature (along the gap) and two positive, as between two parts of
 ///   the surface that nearly touch, kept only when a stroke crosses the gap's mid-plane near the
 ///   saddle outside the surface (the strokes depict a connection there: a mug's handle meeting
