@@ -429,11 +429,12 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>&
     Saddle s;
     if (!newton(grid, grid.point(c[0], c[1], c[2]), s) || !(s.value > -search.window_aliased))
       continue;
-    const bool shaped = s.curvature[1] < 0.0 && s.curvature[2] > 0.0 &&
+    const bool narrow = search.window_most > 0.0 && s.value < search.window_most;
+    const bool wider = !narrow && s.value < search.window_undrawn_most;
+    const bool shaped = (narrow || wider) && s.curvature[1] < 0.0 && s.curvature[2] > 0.0 &&
                         open_across(grid, s.centre, s.axes.col(2), search.across);
-    const bool window = shaped && search.window_most > 0.0 && s.value < search.window_most;
-    const bool undrawn = shaped && !window && s.value < search.window_undrawn_most &&
-                         undrawn_window(s, unit, strokes);
+    const bool window = shaped && narrow;
+    const bool undrawn = shaped && wider && undrawn_window(s, unit, strokes);
     const bool gap = s.value > 0.0 && s.value < search.bridge_most && s.curvature[0] < 0.0 &&
                      s.curvature[1] > 0.0;
     if (!window && !undrawn && !gap) continue;
