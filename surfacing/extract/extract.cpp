@@ -197,7 +197,7 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
     half_labels[v] = seamed.labels[v].front();
     half_sharp[v] = seamed.is_seam(static_cast<int>(v)) && w[v] < 1.0 && !held[v];
   }
-  keep_smooth_proxy(seamed.mesh, start_positions, half_sharp, *constraints.strokes, diagonal,
+  keep_smooth_proxy(seamed.mesh, start_positions, half_sharp, held, *constraints.strokes, diagonal,
                     options.smooth_fallback, &summary.smooth_fallback);
 
   // 4. Mirror (§5).

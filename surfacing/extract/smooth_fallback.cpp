@@ -97,8 +97,8 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
 }
 
 void keep_smooth_proxy(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& sharp,
-                       const StrokeSegments& strokes, double diagonal, const SmoothFallbackOptions& options,
-                       SmoothFallbackSummary* out) {
+                       const std::vector<char>& held, const StrokeSegments& strokes, double diagonal,
+                       const SmoothFallbackOptions& options, SmoothFallbackSummary* out) {
   SmoothFallbackSummary local;
   SmoothFallbackSummary& summary = out ? *out : local;
   summary.parts = summary.reverted = summary.vertices = 0;
@@ -110,9 +110,11 @@ void keep_smooth_proxy(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::
   // Connected parts (through faces) and whether each has a crease vertex.
   const std::vector<int> part = vertex_components(F, now.rows());
   const auto find = [&](int v) { return part[static_cast<std::size_t>(v)]; };
-  std::vector<char> creased(part.size(), 0);
-  for (std::size_t v = 0; v < part.size(); ++v)
+  std::vector<char> creased(part.size(), 0), all_held(part.size(), 1);
+  for (std::size_t v = 0; v < part.size(); ++v) {
     if (v < sharp.size() && sharp[v]) creased[find(static_cast<int>(v))] = 1;
+    if (!(v < held.size() && held[v])) all_held[find(static_cast<int>(v))] = 0;
+  }
 
   // Squared distances of the stroke points near each part, now and at the start.
   const ClosestFaceTree tree_now(now, F), tree_start(start, F);
@@ -135,7 +137,7 @@ void keep_smooth_proxy(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::
   for (std::size_t r = 0; r < part.size(); ++r) {
     if (find(static_cast<int>(r)) != static_cast<int>(r) || creased[r]) continue;
     ++summary.parts;
-    if (count[r] >= options.min_points && sum_start[r] < sum_now[r]) {
+    if (all_held[r] || (count[r] >= options.min_points && sum_start[r] < sum_now[r])) {
       revert[r] = 1;
       ++summary.reverted;
     }

@@ -69,11 +69,13 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
 /// For every connected part of `mesh` (current, optimised positions) with no vertex flagged in
 /// `sharp`: the root-mean-square distance of the stroke points near it to the part, at the current
 /// positions and at `start` (#V x 3, the positions before optimisation: the proxy's); when the
-/// start is closer, the part's vertices are put back at `start`. `diagonal` scales
+/// start is closer, or when every vertex of the part is flagged in `held` (all its regions kept at
+/// the proxy: nothing was fitted, and the Laplacian only shrinks it), the part's vertices are put
+/// back at `start`. `diagonal` scales
 /// options.reach. Fills summary->parts, reverted and vertices. Deterministic; the strokes are
 /// those the surface was fitted to.
 void keep_smooth_proxy(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& sharp,
-                       const StrokeSegments& strokes, double diagonal, const SmoothFallbackOptions& options,
-                       SmoothFallbackSummary* summary = nullptr);
+                       const std::vector<char>& held, const StrokeSegments& strokes, double diagonal,
+                       const SmoothFallbackOptions& options, SmoothFallbackSummary* summary = nullptr);
 
 }  // namespace sketchsurf

@@ -185,7 +185,7 @@ TEST(SmoothFallback, ASmoothPartThatLeftItsStrokesGoesBackToTheProxy) {
   s.sharp[static_cast<std::size_t>(half + 3)] = 1;  // the second sphere has a crease vertex
   TriMesh mesh = s.inflated;
   SmoothFallbackSummary summary;
-  keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, {}, &summary);
+  keep_smooth_proxy(mesh, start, s.sharp, {}, s.strokes, 6.0, {}, &summary);
   EXPECT_EQ(summary.parts, 1u);
   EXPECT_EQ(summary.reverted, 1u);
   EXPECT_EQ(summary.vertices, static_cast<std::size_t>(half));
@@ -200,10 +200,28 @@ TEST(SmoothFallback, APartCloserToItsStrokesThanTheProxyKeepsItsPositions) {
   TriMesh mesh = s.proxy;
   const Eigen::MatrixX3d exact = vertex_matrix(mesh);
   SmoothFallbackSummary summary;
-  keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, {}, &summary);
+  keep_smooth_proxy(mesh, start, s.sharp, {}, s.strokes, 6.0, {}, &summary);
   EXPECT_EQ(summary.parts, 2u);
   EXPECT_EQ(summary.reverted, 0u);
   EXPECT_EQ(max_offset(mesh, exact, 0, static_cast<int>(mesh.n_vertices())), 0.0);
+}
+
+// A part whose regions were all kept at the proxy had nothing fitted: it goes back to the proxy even
+// where the solve's Laplacian left it closer to the strokes.
+TEST(SmoothFallback, APartHeldAtTheProxyEverywhereIsTheProxy) {
+  Inflated s = inflated_spheres();
+  const Eigen::MatrixX3d start = vertex_matrix(s.inflated);
+  TriMesh mesh = s.proxy;
+  const Eigen::MatrixX3d exact = vertex_matrix(mesh);
+  const int half = static_cast<int>(mesh.n_vertices() / 2);
+  std::vector<char> held(mesh.n_vertices(), 0);
+  std::fill(held.begin(), held.begin() + half, 1);  // the first sphere
+  held[static_cast<std::size_t>(half + 3)] = 1;     // and one vertex of the second
+  SmoothFallbackSummary summary;
+  keep_smooth_proxy(mesh, start, s.sharp, held, s.strokes, 6.0, {}, &summary);
+  EXPECT_EQ(summary.reverted, 1u);
+  EXPECT_EQ(max_offset(mesh, start, 0, half), 0.0) << "the held sphere is the proxy's";
+  EXPECT_EQ(max_offset(mesh, exact, half, 2 * half), 0.0) << "the other keeps its positions";
 }
 
 TEST(SmoothFallback, OffOrWithoutStrokesNearbyNothingMoves) {
@@ -213,12 +231,12 @@ TEST(SmoothFallback, OffOrWithoutStrokesNearbyNothingMoves) {
   off.enabled = false;
   TriMesh mesh = s.inflated;
   SmoothFallbackSummary summary;
-  keep_smooth_proxy(mesh, start, s.sharp, s.strokes, 6.0, off, &summary);
+  keep_smooth_proxy(mesh, start, s.sharp, {}, s.strokes, 6.0, off, &summary);
   EXPECT_EQ(summary.reverted, 0u);
   // Strokes 10 diagonals away belong to no part.
   StrokeSegments far = s.strokes;
   far.points.col(1).array() += 60.0;
-  keep_smooth_proxy(mesh, start, s.sharp, far, 6.0, {}, &summary);
+  keep_smooth_proxy(mesh, start, s.sharp, {}, far, 6.0, {}, &summary);
   EXPECT_EQ(summary.reverted, 0u);
   EXPECT_EQ(max_offset(mesh, vertex_matrix(s.inflated), 0, static_cast<int>(mesh.n_vertices())), 0.0);
 }
