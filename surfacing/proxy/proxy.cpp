@@ -734,6 +734,16 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     topology = with;
     return true;
   };
+  // The windows' membranes, then (while handles are left) the thin strips round those whose saddle
+  // lies just inside the surface, each kept where it removes handles: a strip flooded where the
+  // polygonisation did not open would only thicken the wall. Returns the bumps kept.
+  const auto close_windows = [&](Candidate& c, MeshTopology& topology, const Saddles& found) {
+    std::size_t closed = 0;
+    if (try_bumps(c, topology, found.windows, Kind::kWindows)) closed += found.windows.size();
+    if (topology.genus > 0 && try_bumps(c, topology, found.thin, Kind::kWindows))
+      closed += found.thin.size();
+    return closed;
+  };
   const auto solve = [&](double lambda) {
     auto t = Clock::now();
     Candidate c;
@@ -756,8 +766,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     here.window_undrawn_most = topology.genus > 0 ? options.window_undrawn : 0.0;
     const Saddles saddles = find_saddles(c.vipss->function, c.field->scale(), {}, unit,
                                          stroke_grid, box, here, threads);
-    if (try_bumps(c, topology, saddles.windows, Kind::kWindows)) {
-      c.windows = saddles.windows.size();
+    c.windows = close_windows(c, topology, saddles);
+    if (c.windows > 0) {
       // Windows left open round the membranes (a membrane is flat; a curved wall leaves it) are
       // saddles of the lowered field: searched again while that removes handles.
       SaddleSearch again = here;
@@ -765,8 +775,9 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       for (int round = 0; round < kWindowRounds && topology.genus > 0; ++round) {
         const Saddles more = find_saddles(c.vipss->function, c.field->scale(), c.field->bumps(),
                                           unit, stroke_grid, box, again, threads);
-        if (!try_bumps(c, topology, more.windows, Kind::kWindows)) break;
-        c.windows += more.windows.size();
+        const std::size_t closed = close_windows(c, topology, more);
+        if (closed == 0) break;
+        c.windows += closed;
       }
     }
     c.undrawn = saddles.undrawn;

@@ -201,13 +201,16 @@ bool newton(const SearchGrid& grid, const Eigen::Vector3d& start, Saddle& out) {
 }
 
 // True when s f grows along `axis` from x, at distances t = across / 2, across and twice that
-// on either side, to at least 0.3 t: a window through a wall opens onto space on both sides (s f
-// about the distance to its rim, t or more), where in the gap between two faces (two boxes side
-// by side, the axis along the gap) s f stays about the gap's half-width.
+// on either side, to at least 0.3 t above `base`: a window through a wall opens onto space on
+// both sides (s f about the distance to its rim, t or more), where in the gap between two faces
+// (two boxes side by side, the axis along the gap) s f stays about the gap's half-width. `base`
+// is 0, or the value of a window saddle just inside the surface: the polygonisation opens it as
+// if it were at zero, and the space beside it is that much nearer the surface.
 bool open_across(const SearchGrid& grid, const Eigen::Vector3d& x, const Eigen::Vector3d& axis,
-                 double across) {
+                 double across, double base = 0.0) {
   for (const double t : {0.5 * across, across, 2.0 * across})
-    if (!(grid.value(x + t * axis) > 0.3 * t && grid.value(x - t * axis) > 0.3 * t)) return false;
+    if (!(grid.value(x + t * axis) - base > 0.3 * t && grid.value(x - t * axis) - base > 0.3 * t))
+      return false;
   return true;
 }
 
@@ -229,14 +232,16 @@ Bump window_bump(const Saddle& s, double h, double across, double aliased) {
 
 // The window's open region, flooded over the grid from its saddle: each grid point moved to the
 // minimum of s f along the saddle's across axis within one step, kept when that minimum is in
-// (0, most), rises on both sides, opens onto space across (open_across), lies within `reach` of
+// (least, most), rises on both sides, opens onto space across (open_across), lies within `reach` of
 // the saddle and within across / 2 of its plane (a flat wall; past that, the flood would crawl
 // along any surface that runs parallel to the axis a little way off, a box's edges). Each gets a
 // bump with
 // radius 2 h in the wall's plane that lowers s f to zero at `half` either side of the mid-surface
-// (the membrane's faces). `taken` marks the grid cells that already hold a bump.
-void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& search, double most,
-                  std::vector<char>& taken, std::vector<Bump>& out) {
+// (the membrane's faces). `least` is 0, or below it for a saddle just inside the surface: the
+// wall's inside layer thinner than the polygonisation's cells runs on round it and opens there as
+// well. `taken` marks the grid cells that already hold a bump.
+void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& search,
+                  double least, double most, std::vector<char>& taken, std::vector<Bump>& out) {
   const double h = grid.step(), half = 0.35 * search.across;
   const Eigen::Vector3d axis = s.axes.col(2);
   std::vector<char> seen(grid.count(), 0);
@@ -256,10 +261,10 @@ void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& s
       if (v < best) best = v, at = y;
     }
     const Eigen::Vector3d from = at - s.centre;
-    if (!(best > 0.0 && best < most) || from.norm() > search.window_reach ||
+    if (!(best > least && best < most) || from.norm() > search.window_reach ||
         std::abs(from.dot(axis)) > 0.5 * search.across ||
         !(grid.value(at + (h / 4.0) * axis) > best && grid.value(at - (h / 4.0) * axis) > best) ||
-        !open_across(grid, at, axis, search.across))
+        !open_across(grid, at, axis, search.across, std::min(best, 0.0)))
       continue;
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
@@ -432,7 +437,8 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>&
     const bool narrow = search.window_most > 0.0 && s.value < search.window_most;
     const bool wider = !narrow && s.value < search.window_undrawn_most;
     const bool shaped = (narrow || wider) && s.curvature[1] < 0.0 && s.curvature[2] > 0.0 &&
-                        open_across(grid, s.centre, s.axes.col(2), search.across);
+                        open_across(grid, s.centre, s.axes.col(2), search.across,
+                                    std::min(s.value, 0.0));
     const bool window = shaped && narrow;
     const bool undrawn = shaped && wider && undrawn_window(s, unit, strokes);
     const bool gap = s.value > 0.0 && s.value < search.bridge_most && s.curvature[0] < 0.0 &&
@@ -441,11 +447,13 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>&
     if (!take(s.centre)) continue;
     if (window || undrawn) {
       std::vector<Bump>& out = window ? found.windows : found.undrawn;
-      const std::size_t first = out.size();
       out.push_back(window_bump(s, h, search.across, search.window_aliased));
-      flood_window(grid, s, search, window ? search.window_most : s.value + 0.25 * h, taken, out);
-      for (std::size_t i = first + 1; i < out.size(); ++i)
-        seen.push_back(out[i].centre);  // a saddle in a flooded region is that window's
+      std::vector<Bump>& region = s.value > 0.0 ? out : found.thin;
+      const std::size_t first = region.size();
+      flood_window(grid, s, search, s.value > 0.0 ? 0.0 : -search.window_aliased,
+                   window ? search.window_most : s.value + 0.25 * h, taken, region);
+      for (std::size_t i = first; i < region.size(); ++i)
+        seen.push_back(region[i].centre);  // a saddle in a flooded region is that window's
     } else {
       Bump b;
       if (bridge(grid, s, unit, b)) found.bridges.push_back(b);

@@ -52,6 +52,8 @@ struct SaddleSearch {
 struct Saddles {
   std::vector<Bump> windows;  ///< membranes over windows through thin double walls
   std::vector<Bump> undrawn;  ///< membranes over wider windows that no stroke depicts
+  std::vector<Bump> thin;     ///< membranes over the thin strips round windows whose saddle lies
+                              ///< just inside the surface (not their own bumps: in `windows`)
   std::vector<Bump> bridges;  ///< connections across gaps that strokes cross
   std::vector<Bump> necks;    ///< cuts through thin connections that no stroke crosses
 };
@@ -67,7 +69,9 @@ struct Saddles {
 ///   bump: together a membrane about as thick as the walls (the slot of a thin plate is long and
 ///   flat-bottomed, not an ellipse). A window saddle just inside the surface (value above
 ///   -window_aliased: the inside layer thinner than the polygonisation's cells) counts too: the
-///   polygonised surface opens there all the same. A wider window (value in [window_most,
+///   polygonised surface opens there all the same. Its thin strip, the points whose minimum
+///   across is above -window_aliased (the space across measured from that minimum), is flooded
+///   likewise into `thin`: the polygonisation can open anywhere along it. A wider window (value in [window_most,
 ///   window_undrawn_most)) is one too where it lies in a cell of the strokes and no stroke depicts
 ///   an opening: within twice the saddle's distance to the nearest stroke (at most 2.5 times its
 ///   value: the hole spans the gap between them), strokes stand all round the line through it
