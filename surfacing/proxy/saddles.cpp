@@ -232,14 +232,14 @@ Bump window_bump(const Saddle& s, double h, double across, double aliased) {
 
 // The window's open region, flooded over the grid from its saddle: each grid point moved to the
 // minimum of s f along the saddle's across axis within one step, kept when that minimum is in
-// (least, most), rises on both sides, opens onto space across (open_across), lies within `reach` of
-// the saddle and within across / 2 of its plane (a flat wall; past that, the flood would crawl
-// along any surface that runs parallel to the axis a little way off, a box's edges). Each gets a
-// bump with
-// radius 2 h in the wall's plane that lowers s f to zero at `half` either side of the mid-surface
-// (the membrane's faces). `least` is 0, or below it for a saddle just inside the surface: the
-// wall's inside layer thinner than the polygonisation's cells runs on round it and opens there as
-// well. `taken` marks the grid cells that already hold a bump.
+// (least, most), rises on both sides, opens onto space across (open_across, from the minimum
+// when it is below zero), lies within `reach` of the saddle and within across / 2 of its plane
+// (a flat wall; past that, the flood would crawl along any surface that runs parallel to the axis
+// a little way off, a box's edges). Each gets a bump with radius 2 h in the wall's plane that
+// lowers s f to zero at `half` either side of the mid-surface (the membrane's faces). `least` is
+// 0, or below it for a saddle just inside the surface: the wall's inside layer thinner than the
+// polygonisation's cells runs on round it and opens there as well. `taken` marks the grid cells
+// that already hold a bump.
 void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& search,
                   double least, double most, std::vector<char>& taken, std::vector<Bump>& out) {
   const double h = grid.step(), half = 0.35 * search.across;

@@ -71,13 +71,13 @@ struct Saddles {
 ///   -window_aliased: the inside layer thinner than the polygonisation's cells) counts too: the
 ///   polygonised surface opens there all the same. Its thin strip, the points whose minimum
 ///   across is above -window_aliased (the space across measured from that minimum), is flooded
-///   likewise into `thin`: the polygonisation can open anywhere along it. A wider window (value in [window_most,
-///   window_undrawn_most)) is one too where it lies in a cell of the strokes and no stroke depicts
-///   an opening: within twice the saddle's distance to the nearest stroke (at most 2.5 times its
-///   value: the hole spans the gap between them), strokes stand all round the line through it
-///   along its across axis, none winds round that line (a hole's rim, a handle's C) and those
-///   running along it do not stand all round it (a bore drawn by its wall's lines). Those go to
-///   `undrawn`, their region flooded up to the saddle's value.
+///   likewise into `thin`: the polygonisation can open anywhere along it. A wider window (value
+///   in [window_most, window_undrawn_most)) is one too where it lies in a cell of the strokes and
+///   no stroke depicts an opening: within twice the saddle's distance to the nearest stroke (at
+///   most 2.5 times its value: the hole spans the gap between them), strokes stand all round the
+///   line through it along its across axis, none winds round that line (a hole's rim, a handle's
+///   C) and those running along it do not stand all round it (a bore drawn by its wall's lines).
+///   Those go to `undrawn`, their region flooded up to the saddle's value.
 /// - a bridge: one negative curvature (along the gap) and two positive, as between two parts of
 ///   the surface that nearly touch, kept only when a stroke crosses the gap's mid-plane near the
 ///   saddle outside the surface (the strokes depict a connection there: a mug's handle meeting
