@@ -89,6 +89,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.lambda_max", setter([](Params& p) -> auto& { return p.proxy.lambda_max; })},
       {"proxy.lambda_step", setter([](Params& p) -> auto& { return p.proxy.lambda_step; })},
       {"extract.smooth_fallback", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.enabled; })},
+      {"extract.smooth_fallback_margin", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.margin; })},
       {"extract.back_side_gap", setter([](Params& p) -> auto& { return p.extract.back_sides.gap; })},
       {"proxy.far_distance", setter([](Params& p) -> auto& { return p.proxy.far_distance; })},
       {"proxy.far_tie", setter([](Params& p) -> auto& { return p.proxy.far_tie; })},

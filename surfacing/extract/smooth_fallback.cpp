@@ -13,6 +13,10 @@ bool SmoothFallbackOptions::valid(std::string* why) const {
     if (why) *why = "extract smooth_fallback reach must be in (0, 1)";
     return false;
   }
+  if (!(margin >= 0.0)) {
+    if (why) *why = "extract smooth_fallback margin must be >= 0";
+    return false;
+  }
   if (!(agree > 0.0)) {
     if (why) *why = "extract smooth_fallback agree must be > 0";
     return false;
@@ -68,7 +72,8 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
   }
   std::vector<char> closer(models.size(), 0);  // the proxy closer to the region's strokes
   for (std::size_t r = 0; r < models.size(); ++r)
-    closer[r] = count[r] >= options.min_points && to_proxy[r] < to_model[r] && models[r].degree > 1;
+    closer[r] = count[r] >= options.min_points && to_proxy[r] < (1.0 + options.margin) * to_model[r] &&
+               models[r].degree > 1;
   out.regions = static_cast<std::size_t>(
       std::count_if(count.begin(), count.end(), [&](std::size_t c) { return c >= options.min_points; }));
   if (std::none_of(closer.begin(), closer.end(), [](char c) { return c != 0; })) return kept;

@@ -37,6 +37,10 @@ struct SmoothFallbackOptions {
                              ///< region or part; a model farther than this from a point counts as
                              ///< this far (fractions of the diagonal)
   std::size_t min_points = 20;  ///< regions and parts with fewer stroke points are left alone
+  double margin = 0.05;      ///< the proxy counts as closer to a region's stroke points unless its
+                             ///< mean squared distance exceeds the model's by more than this share:
+                             ///< a model that fits them only about as well buys nothing at the
+                             ///< strokes and may bulge between them, where the proxy is smooth
   double agree = 0.02;       ///< a region stays projected when the projection onto its model moves
                              ///< 5% of its vertices farther than this (fraction of the diagonal):
                              ///< there the model corrects the proxy's shape, not its detail
@@ -55,11 +59,11 @@ struct SmoothFallbackSummary {
 
 /// Per region (index into `models`): whether it stays at the proxy. The stroke points within
 /// options.reach * diagonal of `mesh` (the seamed proxy, before optimisation) belong to the region
-/// of their closest face; a region stays when the root-mean-square distance of its points to the
-/// proxy is below their root-mean-square first-order distance to its model (each capped at the
-/// reach), its model is not a plane (degree 1), and the projection that starts the solve
-/// (project_vertices() with `energy`'s steps) moves at most 5% of its own vertices farther than
-/// options.agree * diagonal. Fills summary->regions, kept and held. Deterministic; `strokes` are
+/// of their closest face; a region stays when the mean squared distance of its points to the
+/// proxy is below (1 + options.margin) times their mean squared first-order distance to its
+/// model (each capped at the reach), its model is not a plane (degree 1), and the projection that
+/// starts the solve (project_vertices() with `energy`'s steps) moves at most 5% of its own
+/// vertices farther than options.agree * diagonal. Fills summary->regions, kept and held. Deterministic; `strokes` are
 /// those the surface is fitted to.
 std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
                                    const StrokeSegments& strokes, double diagonal,

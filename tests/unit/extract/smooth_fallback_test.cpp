@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "surfacing/closest_face.h"
 #include "surfacing/sketch/stroke_segments.h"
 #include "tests/support/shapes.h"
 
@@ -75,6 +78,33 @@ TEST(SmoothFallback, ModelsCloserThanTheProxyAreAllProjectedOnto) {
   EXPECT_EQ(kept, std::vector<char>(2, 0));
   EXPECT_EQ(summary.regions, 2u);
   EXPECT_EQ(summary.held, 0u);
+}
+
+TEST(SmoothFallback, AModelOnlyAboutAsCloseAsTheProxyStaysAtTheProxy) {
+  Scene s = two_spheres();
+  // The second proxy sphere 2% too large; its model 2.5% nearer its strokes in mean squared
+  // distance: within the margin, the smooth proxy is kept; without it, the model wins.
+  const auto second = static_cast<int>(s.proxy.mesh.n_vertices() / 2);
+  const Eigen::Vector3d c(4.0, 0.0, 0.0);
+  for (auto v : s.proxy.mesh.vertices())
+    if (v.idx() >= second) s.proxy.mesh.set_point(v, to_openmesh(c + 1.02 * (to_eigen(s.proxy.mesh.point(v)) - c)));
+  const ClosestFaceTree tree(vertex_matrix(s.proxy.mesh), face_matrix(s.proxy.mesh));
+  double squares = 0.0;
+  int count = 0;
+  for (Eigen::Index i = 0; i < s.strokes.points.rows(); ++i) {
+    const Eigen::Vector3d p = s.strokes.points.row(i).transpose();
+    if (p.x() < 2.0) continue;
+    Eigen::Vector3d q;
+    tree.closest_face(p, &q);
+    squares += (q - p).squaredNorm();
+    ++count;
+  }
+  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
+                                          sphere_model(c, 1.0 + std::sqrt(squares / count / 1.025))};
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {}), (std::vector<char>{0, 1}));
+  SmoothFallbackOptions no_margin;
+  no_margin.margin = 0.0;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, no_margin, {}), (std::vector<char>{0, 0}));
 }
 
 TEST(SmoothFallback, AModelThatReshapesTheRegionIsProjectedOntoEvenWhenFartherFromItsStrokes) {
