@@ -97,6 +97,9 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.far_extra_genus", setter([](Params& p) -> auto& { return p.proxy.far_extra_genus; })},
       {"proxy.confine_margin", setter([](Params& p) -> auto& { return p.proxy.confine_margin; })},
       {"proxy.confine_radius", setter([](Params& p) -> auto& { return p.proxy.confine_radius; })},
+      {"proxy.confine_near", setter([](Params& p) -> auto& { return p.proxy.confine_near; })},
+      {"proxy.near_open_least", setter([](Params& p) -> auto& { return p.proxy.near_open_least; })},
+      {"proxy.near_open_ratio", setter([](Params& p) -> auto& { return p.proxy.near_open_ratio; })},
       {"proxy.confine_box", setter([](Params& p) -> auto& { return p.proxy.confine_box; })},
       {"proxy.outline_gap", setter([](Params& p) -> auto& { return p.proxy.outline_gap; })},
       {"proxy.outline_reach", setter([](Params& p) -> auto& { return p.proxy.outline_reach; })},
@@ -191,15 +194,10 @@ std::vector<std::string> Params::names() {
 Surfacer::Surfacer(Params params, ProgressCallback progress)
     : params_(std::move(params)), progress_(std::move(progress)) {}
 
-SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) const {
-  const auto start = Clock::now();
+Sketch Surfacer::prepare(const Sketch& input, bool refuse_scribbles, SurfaceReport& report) const {
   std::string why;
   if (!params_.valid(&why)) throw Error::usage(why);
   const Progress progress(progress_);
-  SurfaceResult result;
-  SurfaceReport& report = result.report;
-
-  // Prepare (METHOD.md §0).
   auto t = Clock::now();
   progress.update("prepare", 0.0);
   Sketch sketch = input;
@@ -253,7 +251,7 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
                                     "surface are ignored; keep them with prepare.ignore_decorations = 0");
   }
   // Scribbled ink depicts no surface: refused here, before the work of surfacing it into a blob.
-  if (!user_proxy && params_.checks.refuse_score > 0.0 && params_.checks.refuse_scribbled > 0.0) {
+  if (refuse_scribbles && params_.checks.refuse_score > 0.0 && params_.checks.refuse_scribbled > 0.0) {
     const double scribbled = scribbled_share(sketch, params_.checks.scribble_fill);
     if (scribbled > params_.checks.refuse_scribbled) {
       std::ostringstream refusal;
@@ -274,9 +272,21 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   report.strokes = sketch.strokes.size();
   report.points = sketch.point_count();
   report.prepare_s = seconds_since(t);
+  return sketch;
+}
+SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) const {
+  const auto start = Clock::now();
+  std::string why;
+  if (!params_.valid(&why)) throw Error::usage(why);
+  const Progress progress(progress_);
+  SurfaceResult result;
+  SurfaceReport& report = result.report;
+
+  // Prepare (METHOD.md §0).
+  Sketch sketch = prepare(input, user_proxy == nullptr, report);
 
   // Proxy (§5 "Proxy creation").
-  t = Clock::now();
+  auto t = Clock::now();
   progress.update("proxy", 0.0);
   report.user_proxy = user_proxy != nullptr;
   if (user_proxy) {
@@ -342,7 +352,8 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   report.stroke_distance = stroke_distance(result.mesh, measured, report.diagonal);
   t = Clock::now();
   progress.update("checks", 0.0);
-  const bool open_expected = std::any_of(sketch.strokes.begin(), sketch.strokes.end(), is_boundary);
+  const bool open_expected = std::any_of(sketch.strokes.begin(), sketch.strokes.end(),
+                                         [](const Stroke& s) { return s.boundary && !s.ignored; });
   CheckOptions checks = params_.checks;
   if (checks.threads == 0) checks.threads = params_.segment.threads;
   report.checks = check_shape(result.mesh, result.labels, sketch, open_expected, checks);

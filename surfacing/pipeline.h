@@ -127,6 +127,14 @@ class Surfacer {
   /// Usage for invalid parameters, Cancelled through the callback.
   SurfaceResult run(const Sketch& sketch, const TriMesh* user_proxy = nullptr) const;
 
+  /// The sketch as run() hands it to the proxy (METHOD.md §0): a copy of `sketch` cleaned,
+  /// resampled, completed by its mirror image when it is half of a symmetric object, its
+  /// over-sketched passes drawn together, the strokes that depict no surface ignored and rims
+  /// marked as boundary strokes (as params() ask); with `refuse_scribbles`, scribbled ink refused
+  /// (run() does so without a user proxy). Fills report's cleaning, consolidation, decorations, openings, symmetry, diagonal,
+  /// strokes, points and prepare_s. Throws as run() does for these steps.
+  Sketch prepare(const Sketch& sketch, bool refuse_scribbles, SurfaceReport& report) const;
+
   const Params& params() const { return params_; }
 
  private:

@@ -221,6 +221,7 @@ class ConfinedField {
   void set_bumps(std::vector<Bump> bumps) { bumps_ = std::move(bumps); }
   const std::vector<Bump>& bumps() const { return bumps_; }
   void set_outline(const Outline* outline) { outline_ = outline; }
+  void set_radius(double radius) { radius_ = radius; }
 
   // g at p and the Newton step that moves p onto g = 0 to first order (value_from() gives g
   // alone).
@@ -477,6 +478,61 @@ double far_fraction(const TriangleArrays& mesh, const PointGrid& strokes, double
   return total > 0.0 ? far / total : 0.0;
 }
 
+// How the surface farther than `radius` from every stroke (`strokes`, the stroke points) is held
+// by the strokes around it, as fractions of the surface's area: `framed` where, seen in a face's
+// tangent plane, the strokes within twice its distance (and within 30 degrees of that plane)
+// surround it with no gap of half a turn or more (a face between its drawn edges), `open` where
+// they leave such a gap or none is near (a web beside a single pole, a fin past the last stroke).
+// The directions are those of `points` (over `grid`), the strokes sampled coarsely: a gap of half
+// a turn needs no finer angles, and the faces farther than `radius` may see most of the sketch.
+struct Framing {
+  double framed = 0.0, open = 0.0;
+};
+Framing surface_framing(const TriangleArrays& mesh, const PointGrid& strokes, const Eigen::MatrixX3d& points,
+                        const PointGrid& grid, double radius, unsigned threads) {
+  constexpr double kCone = 0.5;  // sine of the largest angle between a stroke's direction and the plane
+  const auto faces = static_cast<std::size_t>(mesh.F.rows());
+  std::vector<double> framed(faces, 0.0), open(faces, 0.0), area(faces, 0.0);
+  parallel_for(0, faces, threads, [&](std::size_t k) {
+    const auto f = static_cast<Eigen::Index>(k);
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
+                          c = mesh.V.row(mesh.F(f, 2));
+    area[k] = triangle_area(mesh.V, mesh.F, f);
+    const Eigen::Vector3d x = (a + b + c) / 3.0;
+    const double d = std::sqrt(strokes.nearest(x).second);
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (!(d > radius) || !(n.norm() > 0.0)) return;
+    n.normalize();
+    const Eigen::Vector3d u =
+        (std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(n).normalized();
+    const Eigen::Vector3d v = n.cross(u);
+    std::vector<double> angles;
+    grid.for_each_within(x, 2.0 * d, [&](int i, double) {
+      const Eigen::Vector3d e = points.row(i).transpose() - x;
+      if (std::abs(n.dot(e)) <= kCone * e.norm()) angles.push_back(std::atan2(v.dot(e), u.dot(e)));
+    });
+    double gap = 2.0 * M_PI;
+    if (!angles.empty()) {
+      std::sort(angles.begin(), angles.end());
+      gap = angles.front() + 2.0 * M_PI - angles.back();
+      for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+    }
+    (gap < M_PI ? framed : open)[k] = area[k];
+  });
+  Framing out;
+  double total = 0.0;
+  for (std::size_t k = 0; k < faces; ++k) {  // summed in order: the same whatever the threads
+    total += area[k];
+    out.framed += framed[k];
+    out.open += open[k];
+  }
+  if (total > 0.0) {
+    out.framed /= total;
+    out.open /= total;
+  }
+  return out;
+}
+
 // Least-Squares Mesh attraction of `mesh` (unit frame, remeshed at 2^attract_levels times the
 // target edge) to `targets`, then Loop subdivision back to the target edge (each level halves
 // the edges; smooth, no overshoot at creases).
@@ -534,6 +590,10 @@ bool ProxyOptions::valid(std::string* why) const {
     return fail("proxy confine_margin must be in (0, 1)");
   if (!(confine_radius >= 0.0 && confine_radius < 1.0))
     return fail("proxy confine_radius must be in [0, 1)");
+  if (!(confine_near >= 0.0 && confine_near < 1.0)) return fail("proxy confine_near must be in [0, 1)");
+  if (!(near_open_ratio >= 0.0)) return fail("proxy near_open_ratio must be >= 0");
+  if (!(near_open_least >= 0.0 && near_open_least <= 1.0))
+    return fail("proxy near_open_least must be in [0, 1]");
   if (!(confine_box >= 0.0 && confine_box < 1.0)) return fail("proxy confine_box must be in [0, 1)");
   if (!(outline_gap >= 0.0 && outline_gap < 1.0)) return fail("proxy outline_gap must be in [0, 1)");
   if (!(outline_reach > 0.0 && outline_reach < 1.0))
@@ -674,7 +734,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     std::vector<Bump> undrawn;  // membranes over the wider windows no stroke depicts, not applied
   };
   // The strokes' part of every field without the outline cut: the same for every solve.
-  GridMemo caps(box.min, options.cell);
+  auto caps = std::make_unique<GridMemo>(box.min, options.cell);
   // The zero set of g, polygonised (values from the memos of its strokes' part and of its s f);
   // specks dropped.
   const auto polygonise = [&](const ConfinedField& g, GridMemo& g_caps, GridMemo& rbf,
@@ -718,7 +778,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     all.insert(all.end(), bumps.begin(), bumps.end());
     bumped->set_bumps(std::move(all));
     TriangleArrays mesh;
-    const MeshTopology with = polygonise(*bumped, caps, *c.rbf, mesh, c.evaluations);
+    const MeshTopology with = polygonise(*bumped, *caps, *c.rbf, mesh, c.evaluations);
     if (mesh.F.rows() == 0) return false;
     if (kind == Kind::kNecks) {
       if (with.genus > topology.genus ||
@@ -758,7 +818,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                                               stroke_points, stroke_grid, r.confine_radius, within,
                                               2.0 * options.cell);
     c.rbf = std::make_unique<GridMemo>(box.min, options.cell);
-    MeshTopology topology = polygonise(*c.field, caps, *c.rbf, c.mesh, c.evaluations);
+    MeshTopology topology = polygonise(*c.field, *caps, *c.rbf, c.mesh, c.evaluations);
     // Saddles searched on a grid of two cells within ten cells of a stroke: a window lies on a
     // wall between strokes, a gap between two parts a stroke runs across, a few cells from them.
     SaddleSearch here = search;
@@ -813,6 +873,36 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (i == 1 && c.mesh.F.rows() > 0 && c.far >= options.far_tie) consider(solve(ladder[0]));
     consider(std::move(c));
     if (closed) break;
+  }
+  // A nearer confinement where the surface beyond it is mostly a web or a fin, not faces between
+  // drawn edges: a lamp's pole webbed to its base and shade is cut back to a tube round the pole.
+  // Faces framed by strokes far apart (a box's sides, a shield, a chest's lid) would be pitted by
+  // it: sketches with more than a little of them keep the wider radius. Not where the strokes frame
+  // no surface (outline_most, as for the outline cut). Kept when it adds no handle and splits
+  // nothing.
+  if (options.confine_near > 0.0 && options.confine_near < r.confine_radius && kept.mesh.F.rows() > 0 &&
+      kept.far <= options.outline_most) {
+    const auto t = Clock::now();
+    const Eigen::MatrixX3d coarse = stroke_targets(unit, 6.0 * options.cell);
+    const Framing framing =
+        surface_framing(kept.mesh, stroke_grid, coarse, PointGrid(coarse), options.confine_near, threads);
+    if (framing.open >= options.near_open_least && framing.open >= options.near_open_ratio * framing.framed) {
+      auto near = std::make_unique<ConfinedField>(*kept.field);
+      near->set_radius(options.confine_near);
+      auto near_caps = std::make_unique<GridMemo>(box.min, options.cell);
+      TriangleArrays mesh;
+      const MeshTopology topology = polygonise(*near, *near_caps, *kept.rbf, mesh, kept.evaluations);
+      if (mesh.F.rows() > 0 && topology.genus <= kept.genus && topology.components <= kept.components) {
+        kept.field = std::move(near);
+        kept.mesh = std::move(mesh);
+        kept.genus = topology.genus;
+        kept.components = topology.components;
+        kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance);
+        caps = std::move(near_caps);
+        r.confine_radius = options.confine_near;
+      }
+    }
+    r.polygonize_seconds += seconds_since(t);
   }
   // The wider windows that no stroke depicts are closed on the kept solve only: on every solve
   // they would change the choice above, which weighs handles (a smoother solve that webs a chair's

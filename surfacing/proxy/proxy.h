@@ -46,6 +46,17 @@ struct ProxyOptions {
                                  ///< (ground-truth chair: legs apart at 0.15) but pits faces framed
                                  ///< by strokes far apart (bundled cube: genus 5 at 0.15, 0 at 0.3;
                                  ///< ground-truth torus: 21 at 0.04, 1 at 0.08)
+  double confine_near = 0.1;    ///< a nearer radius (fraction of diagonal; 0 = off), used when
+                                 ///< the surface farther than this from every stroke is mostly
+                                 ///< not framed by strokes: seen in its tangent plane, the strokes
+                                 ///< near it leave a gap of half a turn (a lamp's pole webbed to
+                                 ///< its base and shade). Faces framed by strokes far apart would
+                                 ///< be pitted by it, hence tried only when ...
+  double near_open_least = 0.01;  ///< ... at least this fraction of the surface is farther and
+                                  ///< not framed, and
+  double near_open_ratio = 5.0;   ///< ... this many times the fraction farther and framed (a
+                                  ///< chest's lid: 3.7, pitted; a lamp's web: 6.3); kept when it
+                                  ///< adds no handle and splits nothing
   double confine_box = 0.02;    ///< with confine_radius > 0, no surface farther than this outside
                                 ///< the strokes' bounding box either (fraction of diagonal): the
                                 ///< offset surface that closes a cut would reach confine_radius

@@ -95,6 +95,19 @@ void run_proxy(const ProxyCommandOptions& given, const GlobalOptions& global) {
   files.output("-o", opt.output, {".obj", ".ply"});
   if (!opt.report.empty()) files.output("--report", opt.report);
   Sketch sketch = read_clean_sketch(opt.sketch, global);
+  // The strokes as the surface command hands them to the proxy (resampled, decorations ignored,
+  // ...): the same proxy as `sketchsurf surface` builds with these options. Scribbled ink is
+  // the surface command's to refuse.
+  Params params;
+  params.proxy = opt.proxy;
+  try {
+    SurfaceReport prepared;
+    sketch = Surfacer(params).prepare(sketch, false, prepared);
+  } catch (const Error& e) {
+    if (e.kind() == ErrorKind::Input) throw Error::input(opt.sketch, e.what());
+    if (e.kind() == ErrorKind::Processing) throw Error::processing(opt.sketch + ": " + e.what());
+    throw;
+  }
   if (global.verbose)
     std::cerr << "proxy: points " << opt.proxy.points << ", lambda " << opt.proxy.lambda
               << ", edge " << opt.proxy.edge << ", cell " << opt.proxy.cell << ", threads "
