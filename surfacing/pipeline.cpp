@@ -274,6 +274,7 @@ Sketch Surfacer::prepare(const Sketch& input, bool refuse_scribbles, SurfaceRepo
   report.prepare_s = seconds_since(t);
   return sketch;
 }
+
 SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) const {
   const auto start = Clock::now();
   std::string why;

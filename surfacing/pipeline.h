@@ -131,8 +131,9 @@ class Surfacer {
   /// resampled, completed by its mirror image when it is half of a symmetric object, its
   /// over-sketched passes drawn together, the strokes that depict no surface ignored and rims
   /// marked as boundary strokes (as params() ask); with `refuse_scribbles`, scribbled ink refused
-  /// (run() does so without a user proxy). Fills report's cleaning, consolidation, decorations, openings, symmetry, diagonal,
-  /// strokes, points and prepare_s. Throws as run() does for these steps.
+  /// (run() does so without a user proxy). Fills report's cleaning, consolidation, decorations,
+  /// openings, symmetry, diagonal, strokes, points and prepare_s. Throws as run() does for these
+  /// steps.
   Sketch prepare(const Sketch& sketch, bool refuse_scribbles, SurfaceReport& report) const;
 
   const Params& params() const { return params_; }

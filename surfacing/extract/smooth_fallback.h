@@ -63,8 +63,8 @@ struct SmoothFallbackSummary {
 /// proxy is below (1 + options.margin) times their mean squared first-order distance to its
 /// model (each capped at the reach), its model is not a plane (degree 1), and the projection that
 /// starts the solve (project_vertices() with `energy`'s steps) moves at most 5% of its own
-/// vertices farther than options.agree * diagonal. Fills summary->regions, kept and held. Deterministic; `strokes` are
-/// those the surface is fitted to.
+/// vertices farther than options.agree * diagonal. Fills summary->regions, kept and held.
+/// Deterministic; `strokes` are those the surface is fitted to.
 std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
                                    const StrokeSegments& strokes, double diagonal,
                                    const SmoothFallbackOptions& options, const MeshEnergyOptions& energy,

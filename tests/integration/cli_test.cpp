@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "surfacing/sketch/io/mesh_io.h"
 #include "surfacing/sketch/io/sketch_io.h"
 #include "tests/support/shapes.h"
 #include "tests/unit/sketch/io_test_support.h"
@@ -135,6 +136,24 @@ TEST(Cli, ProxyParamsReachTheProxy) {
   const auto report = nlohmann::json::parse(testing::read_text(dir / "r.json"));
   EXPECT_DOUBLE_EQ(report["vipss"]["lambda"].get<double>(), 0.002);
   EXPECT_DOUBLE_EQ(report["parameters"]["edge"].get<double>(), 0.03);
+}
+
+TEST(Cli, ProxyLeavesOutAStrokeThatDepictsNoSurfaceAsSurfaceDoes) {
+  // A sphere of radius 0.5 with an antenna from (0.5, 0, 0) to (1, 0, 0): the proxy command
+  // prepares the strokes as `surface` does, so the antenna is ignored, not wrapped in a horn.
+  TempDir dir;
+  Sketch sketch = testing::sphere_sketch(0.5, 4);
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return Eigen::Vector3d(0.5 + 0.5 * t, 0.0, 0.0); }, 0.0, 1.0, 0.005));
+  write_sketch(sketch, dir / "s.json");
+  const CliResult r =
+      run_cli(dir, {"-q", "proxy", (dir / "s.json").string(), "-o", (dir / "p.ply").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const TriMesh proxy = read_mesh(dir / "p.ply");
+  double reach = -1.0;
+  for (const auto v : proxy.vertices()) reach = std::max(reach, static_cast<double>(proxy.point(v)[0]));
+  EXPECT_LT(reach, 0.55);
+  EXPECT_GT(reach, 0.45);
 }
 
 TEST(Cli, MissingOrInvalidFilesExitWith3NamingTheFile) {

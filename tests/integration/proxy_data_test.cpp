@@ -96,7 +96,7 @@ Sketch prepared(const std::string& name) {
 TEST(ProxyShapeData, ALampsPoleIsNotWebbedToItsBase) {
   // cassie/10-0-1: a desk lamp, a long arched pole between a round base and a shade. With the
   // wide confinement alone the pole was webbed to the base into a column, its side far from
-  // every stroke (a quarter of the area farther than 0.1 of the diagonal).
+  // every stroke (nearly half of the area farther than 0.1 of the diagonal).
   const Sketch sketch = prepared("cassie/10-0-1.curves");
   ProxyReport report;
   const TriMesh proxy = make_proxy(sketch, {}, {}, &report);

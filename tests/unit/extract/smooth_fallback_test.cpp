@@ -87,7 +87,8 @@ TEST(SmoothFallback, AModelOnlyAboutAsCloseAsTheProxyStaysAtTheProxy) {
   const auto second = static_cast<int>(s.proxy.mesh.n_vertices() / 2);
   const Eigen::Vector3d c(4.0, 0.0, 0.0);
   for (auto v : s.proxy.mesh.vertices())
-    if (v.idx() >= second) s.proxy.mesh.set_point(v, to_openmesh(c + 1.02 * (to_eigen(s.proxy.mesh.point(v)) - c)));
+    if (v.idx() >= second)
+      s.proxy.mesh.set_point(v, to_openmesh(c + 1.02 * (to_eigen(s.proxy.mesh.point(v)) - c)));
   const ClosestFaceTree tree(vertex_matrix(s.proxy.mesh), face_matrix(s.proxy.mesh));
   double squares = 0.0;
   int count = 0;
