@@ -146,14 +146,27 @@ TEST(Cli, ProxyLeavesOutAStrokeThatDepictsNoSurfaceAsSurfaceDoes) {
   sketch.strokes.push_back(testing::sample_curve(
       [](double t) { return Eigen::Vector3d(0.5 + 0.5 * t, 0.0, 0.0); }, 0.0, 1.0, 0.005));
   write_sketch(sketch, dir / "s.json");
-  const CliResult r =
-      run_cli(dir, {"-q", "proxy", (dir / "s.json").string(), "-o", (dir / "p.ply").string()});
+  const auto reach = [&] {  // the proxy's largest x
+    double x = -1.0;
+    const TriMesh proxy = read_mesh(dir / "p.ply");
+    for (const auto v : proxy.vertices()) x = std::max(x, static_cast<double>(proxy.point(v)[0]));
+    return x;
+  };
+  CliResult r = run_cli(dir, {"proxy", (dir / "s.json").string(), "-o", (dir / "p.ply").string(),
+                              "--report", (dir / "r.json").string()});
   ASSERT_EQ(r.code, 0) << r.err;
-  const TriMesh proxy = read_mesh(dir / "p.ply");
-  double reach = -1.0;
-  for (const auto v : proxy.vertices()) reach = std::max(reach, static_cast<double>(proxy.point(v)[0]));
-  EXPECT_LT(reach, 0.55);
-  EXPECT_GT(reach, 0.45);
+  EXPECT_LT(reach(), 0.55);
+  EXPECT_GT(reach(), 0.45);
+  EXPECT_NE(r.err.find("note: ignored 1 stroke(s) that depict no surface"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--keep-all-strokes keeps them"), std::string::npos) << r.err;
+  const auto report = nlohmann::json::parse(testing::read_text(dir / "r.json"));
+  ASSERT_EQ(report["decorations"].size(), 1u);
+  EXPECT_EQ(report["decorations"][0]["kind"], "dangling");
+  // Kept, the antenna is fitted: the surface reaches out along it.
+  r = run_cli(dir, {"-q", "proxy", (dir / "s.json").string(), "-o", (dir / "p.ply").string(),
+                    "--keep-all-strokes"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_GT(reach(), 0.9);
 }
 
 TEST(Cli, MissingOrInvalidFilesExitWith3NamingTheFile) {

@@ -25,12 +25,15 @@ struct ProxyCommandOptions {
   std::string from;
   std::string report;
   std::vector<std::string> params;
+  bool keep_all_strokes = false;
   ProxyOptions proxy;
 };
 
-nlohmann::json report_json(const ProxyReport& r, const ProxyCommandOptions& opt) {
+nlohmann::json report_json(const ProxyReport& r, const SurfaceReport& prepared,
+                           const ProxyCommandOptions& opt) {
   nlohmann::json j = {
       {"mode", opt.from.empty() ? "vipss" : "attract"},
+      {"decorations", decorations_json(prepared.decorations)},
       {"samples", r.samples},
       {"vertices", r.vertices},
       {"faces", r.faces},
@@ -100,8 +103,9 @@ void run_proxy(const ProxyCommandOptions& given, const GlobalOptions& global) {
   // the surface command's to refuse.
   Params params;
   params.proxy = opt.proxy;
+  params.prepare.ignore_decorations = !opt.keep_all_strokes;
+  SurfaceReport prepared;
   try {
-    SurfaceReport prepared;
     sketch = Surfacer(params).prepare(sketch, false, prepared);
   } catch (const Error& e) {
     if (e.kind() == ErrorKind::Input) throw Error::input(opt.sketch, e.what());
@@ -125,12 +129,13 @@ void run_proxy(const ProxyCommandOptions& given, const GlobalOptions& global) {
   }
   files.write(opt.output, [&](const auto& file) { write_mesh(mesh, file); });
   if (!opt.report.empty()) {
-    const nlohmann::json j = report_json(report, opt);
+    const nlohmann::json j = report_json(report, prepared, opt);
     files.write(opt.report, [&](const auto& file) {
       write_atomically(file, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
     });
   }
   files.commit();
+  note_decorations(global, opt.sketch, prepared.decorations, 0, "--keep-all-strokes keeps them");
   if (!global.quiet)
     std::cerr << "proxy: " << report.vertices << " vertices, " << report.faces << " faces, "
               << report.topology.components << " component(s), genus " << report.topology.genus
@@ -166,6 +171,9 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global) {
                   "options above. Repeatable")
       ->allow_extra_args(false);
   cmd->add_option("--report", opt->report, "Write counts, genus and per-stage timings as JSON");
+  cmd->add_flag("--keep-all-strokes", opt->keep_all_strokes,
+                "Fit every stroke, also those that seem to depict no surface (a dot apart, a stroke "
+                "hanging by one end); by default they are left out, as the surface command does");
   cmd->add_option("--threads", opt->proxy.threads, "Worker threads (0 = all)")
       ->capture_default_str()
       ->check(whole_number(0, kMaxThreads));

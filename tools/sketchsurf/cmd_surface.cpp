@@ -269,16 +269,8 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     });
   }
   files.commit();
-  if (!global.quiet && !result.report.decorations.empty()) {
-    std::cerr << opt.sketch << ": note: ignored " << result.report.decorations.size()
-              << " stroke(s) that depict no surface (id";
-    for (const Decoration& d : result.report.decorations)
-      std::cerr << " " << d.id << (d.kind == DecorationKind::SmallGroup ? " (small group apart)" : " (hangs by one end)");
-    if (result.report.tubes > 0)
-      std::cerr << "), drawn as " << result.report.tubes << " thin tube(s) apart from the surface\n";
-    else
-      std::cerr << "); --keep-all-strokes keeps them, --tubes draws them as thin tubes\n";
-  }
+  note_decorations(global, opt.sketch, result.report.decorations, result.report.tubes,
+                   "--keep-all-strokes keeps them, --tubes draws them as thin tubes");
   if (!global.quiet && !result.report.openings.empty()) {
     std::cerr << opt.sketch << ": note: opened the surface at " << result.report.openings.size()
               << " rim(s) with nothing drawn across or beyond them (stroke id";

@@ -4,9 +4,11 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "surfacing/mesh.h"
 #include "surfacing/progress.h"
+#include "surfacing/sketch/decorations.h"
 #include "surfacing/sketch/io/sketch_io.h"
 
 namespace sketchsurf::cli {
@@ -47,6 +49,12 @@ Sketch read_clean_sketch(const std::string& file, const GlobalOptions& global);
 /// strokes) with an Error (Input) naming the file, before any work: such a mesh would otherwise
 /// spend minutes and gigabytes in remeshing, or fail later without a file named.
 TriMesh read_proxy_mesh(const std::string& file, const Sketch& sketch);
+/// Notes on stderr, unless quiet, the strokes of `file` left out as depicting no surface, with
+/// what keeps them (`keep_hint`, e.g. "--keep-all-strokes keeps them"), or, with `tubes` > 0, the
+/// tubes drawn round them instead.
+void note_decorations(const GlobalOptions& global, const std::string& file,
+                      const std::vector<Decoration>& decorations, std::size_t tubes,
+                      const std::string& keep_hint);
 /// Prints reader warnings to stderr as "FILE: warning: ...", unless quiet.
 void print_warnings(const GlobalOptions& global, const std::string& file, const Warnings& warnings);
 /// `text` with control bytes other than newline and tab written as \xNN: what a terminal is

@@ -42,6 +42,21 @@ ProgressCallback stderr_progress(const GlobalOptions& global) {
   };
 }
 
+void note_decorations(const GlobalOptions& global, const std::string& file,
+                      const std::vector<Decoration>& decorations, std::size_t tubes,
+                      const std::string& keep_hint) {
+  if (global.quiet || decorations.empty()) return;
+  std::cerr << file << ": note: ignored " << decorations.size()
+            << " stroke(s) that depict no surface (id";
+  for (const Decoration& d : decorations)
+    std::cerr << " " << d.id
+              << (d.kind == DecorationKind::SmallGroup ? " (small group apart)" : " (hangs by one end)");
+  if (tubes > 0)
+    std::cerr << "), drawn as " << tubes << " thin tube(s) apart from the surface\n";
+  else
+    std::cerr << "); " << keep_hint << "\n";
+}
+
 void print_warnings(const GlobalOptions& global, const std::string& file, const Warnings& warnings) {
   if (global.quiet) return;
   for (const auto& w : warnings) std::cerr << printable(file) << ": warning: " << printable(w) << "\n";
