@@ -277,8 +277,6 @@ Sketch Surfacer::prepare(const Sketch& input, bool refuse_scribbles, SurfaceRepo
 
 SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) const {
   const auto start = Clock::now();
-  std::string why;
-  if (!params_.valid(&why)) throw Error::usage(why);
   const Progress progress(progress_);
   SurfaceResult result;
   SurfaceReport& report = result.report;

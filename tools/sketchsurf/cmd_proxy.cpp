@@ -5,6 +5,7 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "surfacing/pipeline.h"
@@ -108,9 +109,7 @@ void run_proxy(const ProxyCommandOptions& given, const GlobalOptions& global) {
   try {
     sketch = Surfacer(params).prepare(sketch, false, prepared);
   } catch (const Error& e) {
-    if (e.kind() == ErrorKind::Input) throw Error::input(opt.sketch, e.what());
-    if (e.kind() == ErrorKind::Processing) throw Error::processing(opt.sketch + ": " + e.what());
-    throw;
+    rethrow_naming(opt.sketch, e);
   }
   if (global.verbose)
     std::cerr << "proxy: points " << opt.proxy.points << ", lambda " << opt.proxy.lambda
@@ -120,12 +119,13 @@ void run_proxy(const ProxyCommandOptions& given, const GlobalOptions& global) {
   const Progress progress(stderr_progress(global));
   ProxyReport report;
   TriMesh mesh;
+  std::optional<TriMesh> from;  // a bad --from mesh is an error naming that file
+  if (!opt.from.empty()) from = read_proxy_mesh(opt.from, sketch);
   try {
-    mesh = opt.from.empty() ? make_proxy(sketch, opt.proxy, progress, &report)
-                            : attract_proxy(read_proxy_mesh(opt.from, sketch), sketch, opt.proxy, progress, &report);
+    mesh = from ? attract_proxy(*from, sketch, opt.proxy, progress, &report)
+                : make_proxy(sketch, opt.proxy, progress, &report);
   } catch (const Error& e) {
-    if (e.kind() != ErrorKind::Processing) throw;
-    throw Error::processing(opt.sketch + ": " + e.what());
+    rethrow_naming(opt.sketch, e);
   }
   files.write(opt.output, [&](const auto& file) { write_mesh(mesh, file); });
   if (!opt.report.empty()) {

@@ -244,9 +244,7 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     try {
       return Surfacer(params, stderr_progress(global)).run(sketch, proxy ? &*proxy : nullptr);
     } catch (const Error& e) {  // what is wrong with the sketch, said with its file name
-      if (e.kind() == ErrorKind::Input) throw Error::input(opt.sketch, e.what());
-      if (e.kind() == ErrorKind::Processing) throw Error::processing(opt.sketch + ": " + e.what());
-      throw;
+      rethrow_naming(opt.sketch, e);
     }
   }();
 

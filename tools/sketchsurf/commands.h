@@ -49,6 +49,9 @@ Sketch read_clean_sketch(const std::string& file, const GlobalOptions& global);
 /// strokes) with an Error (Input) naming the file, before any work: such a mesh would otherwise
 /// spend minutes and gigabytes in remeshing, or fail later without a file named.
 TriMesh read_proxy_mesh(const std::string& file, const Sketch& sketch);
+/// Rethrows `e` from the work on `file` with the file named: an input or processing error says
+/// which sketch it is about (batch runs print many); others as they are.
+[[noreturn]] void rethrow_naming(const std::string& file, const Error& e);
 /// Notes on stderr, unless quiet, the strokes of `file` left out as depicting no surface, with
 /// what keeps them (`keep_hint`, e.g. "--keep-all-strokes keeps them"), or, with `tubes` > 0, the
 /// tubes drawn round them instead.

@@ -42,6 +42,12 @@ ProgressCallback stderr_progress(const GlobalOptions& global) {
   };
 }
 
+void rethrow_naming(const std::string& file, const Error& e) {
+  if (e.kind() == ErrorKind::Input) throw Error::input(file, e.what());
+  if (e.kind() == ErrorKind::Processing) throw Error::processing(file + ": " + e.what());
+  throw e;
+}
+
 void note_decorations(const GlobalOptions& global, const std::string& file,
                       const std::vector<Decoration>& decorations, std::size_t tubes,
                       const std::string& keep_hint) {
