@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "surfacing/error.h"
@@ -107,6 +108,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.outline_to", setter([](Params& p) -> auto& { return p.proxy.outline_to; })},
       {"proxy.outline_blend", setter([](Params& p) -> auto& { return p.proxy.outline_blend; })},
       {"proxy.outline_most", setter([](Params& p) -> auto& { return p.proxy.outline_most; })},
+      {"proxy.loft_fit", setter([](Params& p) -> auto& { return p.proxy.loft_fit; })},
       {"proxy.window_value", setter([](Params& p) -> auto& { return p.proxy.window_value; })},
       {"proxy.window_undrawn", setter([](Params& p) -> auto& { return p.proxy.window_undrawn; })},
       {"proxy.window_reach", setter([](Params& p) -> auto& { return p.proxy.window_reach; })},
@@ -322,6 +324,12 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   // for the automatic proxy only.
   ExtractOptions extract_options = params_.extract;
   if (user_proxy) extract_options.energy.trust_distance = extract_options.energy.box_margin = 0.0;
+  // A proxy lofted through the sketch's sections is already the surface they depict between them;
+  // a curved region's model, fitted to a few section and profile strokes, only bulges there: every
+  // curved region stays at the proxy (planes, a section's cap, are still projected onto).
+  if (report.proxy.loft_sections > 0)
+    extract_options.smooth_fallback.margin = extract_options.smooth_fallback.agree =
+        std::numeric_limits<double>::infinity();
   ExtractedSurface surface = [&] {
     try {
       return extract(result.proxy, result.segmentation.labels, result.segmentation.models, work,

@@ -16,7 +16,9 @@
 
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
+#include "surfacing/closest_face.h"
 #include "surfacing/proxy/attract.h"
+#include "surfacing/proxy/loft.h"
 #include "surfacing/proxy/point_grid.h"
 #include "surfacing/proxy/polygonize.h"
 #include "surfacing/proxy/remesh.h"
@@ -603,6 +605,7 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(outline_blend > 0.0 && outline_blend < 1.0))
     return fail("proxy outline_blend must be in (0, 1)");
   if (!(outline_most >= 0.0 && outline_most <= 1.0)) return fail("proxy outline_most must be in [0, 1]");
+  if (!(loft_fit >= 0.0 && loft_fit < 1.0)) return fail("proxy loft_fit must be in [0, 1)");
   if (!(vipss_tolerance > 0.0 && vipss_tolerance < 1.0))
     return fail("proxy vipss_tolerance must be in (0, 1)");
   if (!(edge > 1e-4 && edge < 0.5)) return fail("proxy edge must be in (1e-4, 0.5) of the diagonal");
@@ -941,6 +944,36 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       kept.field = std::move(cut);
       kept.mesh = std::move(mesh);
       r.outline_cut = true;
+    }
+    r.polygonize_seconds += seconds_since(t);
+  }
+  // Sections too sparse for VIPSS (a dress's waist and hem and a profile: its zero set runs out
+  // between them to the box): the surface lofted through them, when it holds every stroke.
+  if (options.loft_fit > 0.0 && (kept.mesh.F.rows() == 0 || kept.far > options.outline_most)) {
+    const auto t = Clock::now();
+    LoftOptions loft_options;
+    loft_options.edge = options.edge;
+    loft_options.fit = options.loft_fit;
+    if (std::optional<Loft> loft = loft_sections(unit, loft_options)) {
+      r.loft_sections = loft->sections;
+      r.far_area = far_fraction(loft->mesh, stroke_grid, options.far_distance);
+      r.polygonize_seconds += seconds_since(t);
+      t0 = Clock::now();
+      TriMesh mesh = mesh_from_matrices(loft->mesh.V, loft->mesh.F);
+      const ClosestFaceTree tree(loft->mesh.V, loft->mesh.F);
+      const SurfaceProjector onto_loft = [&](Eigen::MatrixX3d& p) {
+        parallel_for(0, static_cast<std::size_t>(p.rows()), threads, [&](std::size_t i) {
+          Eigen::Vector3d q;
+          tree.closest_face(p.row(static_cast<Eigen::Index>(i)).transpose(), &q);
+          p.row(static_cast<Eigen::Index>(i)) = q.transpose();
+        });
+      };
+      RemeshOptions remesh_options;
+      remesh_options.target_edge = options.edge;
+      remesh_options.iterations = options.vipss_remesh_iterations;
+      remesh(mesh, remesh_options, onto_loft, progress);
+      r.remesh_seconds = seconds_since(t0);
+      return finish(std::move(mesh), frame, start, r, report);
     }
     r.polygonize_seconds += seconds_since(t);
   }

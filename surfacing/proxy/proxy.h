@@ -78,6 +78,12 @@ struct ProxyOptions {
   double outline_most = 0.7;    ///< ... and the cut is made only when at most this fraction of the
                                 ///< surface lies farther than far_distance from every stroke (more:
                                 ///< the strokes frame no surface; cut, it would fall apart)
+  double loft_fit = 0.02;       ///< where the surface lies mostly far from every stroke (more than
+                                ///< outline_most of it) and the strokes include parallel section
+                                ///< loops, the proxy is lofted through them instead (loft.h), when
+                                ///< 95% of the stroke points lie within this distance of the loft
+                                ///< (fraction of diagonal; 0 = never): a dress drawn as a waist,
+                                ///< a hem and a profile
   double window_value = 0.025;  ///< where a solve's surface has handles, the windows through thin
                                 ///< double walls are closed: saddles of the distance-scaled VIPSS
                                 ///< function with a value below this (fraction of diagonal; 0 =
@@ -171,6 +177,8 @@ struct ProxyReport {
                                   ///< farther than far_distance from every stroke
   double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
   bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
+  std::size_t loft_sections = 0;  ///< automatic proxy: the section loops it was lofted through
+                                  ///< (0: VIPSS's surface)
   std::size_t windows = 0;        ///< automatic proxy: membrane bumps closing windows
   std::size_t bridges = 0;        ///< automatic proxy: gaps bridged
   std::size_t necks = 0;          ///< automatic proxy: necks cut

@@ -4,15 +4,18 @@
 // from the stroke points to the surface must stay under 1% of the bounding-box diagonal. And the
 // flower, a scene of single lines that depicts no surface, and an Open Brush sketch of scribbled
 // masses are refused with the default parameters;
-// a lamp's cable and its plug, and a torch's ring on a string, are left out of the surface.
+// a lamp's cable and its plug, and a torch's ring on a string, are left out of the surface; a
+// dress drawn as sections comes out as a tube lofted through them.
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <tuple>
 
 #include "surfacing/error.h"
 #include "surfacing/pipeline.h"
 #include "surfacing/sketch/io/sketch_io.h"
+#include "surfacing/sketch/openings.h"
 
 namespace sketchsurf {
 namespace {
@@ -109,6 +112,49 @@ TEST(DecorationData, ATorchsHangingRingIsLeftOutAndItsHandleKept) {
   ASSERT_EQ(r.report.decorations.size(), 2u);
   EXPECT_EQ(r.report.decorations[0].kind, DecorationKind::Dangling);
   EXPECT_EQ(r.report.decorations[1].kind, DecorationKind::SmallGroup);
+}
+
+TEST(SectionData, ADressDrawnAsSectionsIsALoftedTube) {
+  // vns/dress: a waist circle, a four-lobed hem below it and a profile through both. VIPSS's
+  // surface ran out between them to the strokes' box (its cross-section a rectangle round the
+  // hem); lofted, the dress follows the hem's lobes and valleys and stays within its sections.
+  const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "vns" / "dress.obj");
+  const SurfaceResult r = Surfacer(coarse_params()).run(sketch);
+  EXPECT_EQ(r.report.proxy.loft_sections, 2u);
+  // The waist and the hem: the two loops whose planes are parallel.
+  std::vector<StrokeLoop> loops;
+  std::vector<std::size_t> strokes;
+  for (std::size_t s = 0; s < sketch.strokes.size(); ++s)
+    if (const auto loop = stroke_loop(sketch.strokes[s].points)) {
+      loops.push_back(*loop);
+      strokes.push_back(s);
+    }
+  ASSERT_EQ(loops.size(), 3u);  // and the profile, at right angles to them
+  std::size_t a = 0, b = 1;
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = i + 1; j < 3; ++j)
+      if (std::abs(loops[i].plane.normal.dot(loops[j].plane.normal)) >
+          std::abs(loops[a].plane.normal.dot(loops[b].plane.normal)))
+        std::tie(a, b) = std::tie(i, j);
+  const Eigen::Vector3d axis = (loops[b].center - loops[a].center).normalized();
+  const auto radial = [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3d d = p - loops[a].center;
+    return (d - d.dot(axis) * axis).norm();
+  };
+  double widest = 0.0;
+  for (std::size_t s : {strokes[a], strokes[b]})
+    for (const Eigen::Vector3d& p : sketch.strokes[s].points) widest = std::max(widest, radial(p));
+  const double length = (loops[b].center - loops[a].center).norm();
+  const double tolerance = 0.01 * sketch.bounding_box().diagonal();
+  for (const auto v : r.mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(r.mesh.point(v));
+    const double along = (p - loops[a].center).dot(axis);
+    ASSERT_LE(radial(p), widest + tolerance) << "vertex " << v.idx();
+    ASSERT_GE(along, -tolerance) << "vertex " << v.idx();
+    ASSERT_LE(along, length + tolerance) << "vertex " << v.idx();
+  }
+  EXPECT_LT(r.report.stroke_distance.p95, 0.01);
+  EXPECT_EQ(r.report.checks.self_intersections, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(RealSketches, SurfaceData, ::testing::ValuesIn(real_sketches()),

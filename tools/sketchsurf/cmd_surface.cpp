@@ -133,7 +133,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
       {"proxy", {{"user", rep.user_proxy}, {"vertices", r.proxy.n_vertices()}, {"faces", r.proxy.n_faces()},
                  {"genus", rep.proxy.topology.genus}, {"lambda", rep.proxy.lambda},
                  {"far_area", rep.proxy.far_area}, {"confine_radius", rep.proxy.confine_radius},
-                 {"outline_cut", rep.proxy.outline_cut},
+                 {"outline_cut", rep.proxy.outline_cut}, {"loft_sections", rep.proxy.loft_sections},
                  {"window_bumps", rep.proxy.windows}, {"bridges", rep.proxy.bridges},
                  {"necks_cut", rep.proxy.necks}}},
       {"extraction", {{"solver", ex.optimization.solver},
