@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <vector>
 
 #include "surfacing/closest_face.h"
@@ -20,7 +19,7 @@ struct Section {
 };
 
 // The largest family of loops whose planes are parallel within `cos_parallel` (ties: the larger
-// sum of radii, then the lower stroke), its normal oriented as its first loop's.
+// sum of radii, then the earlier seed), its normal oriented as the seed's.
 std::vector<Section> parallel_family(const std::vector<Section>& loops, double cos_parallel,
                                      Eigen::Vector3d& normal) {
   std::vector<Section> best;
@@ -131,22 +130,19 @@ std::optional<Loft> loft_sections(const Sketch& sketch, const LoftOptions& optio
   const Eigen::Vector3d e1 = (sections.front().loop.u - n.dot(sections.front().loop.u) * n).normalized();
   const Eigen::Vector3d e2 = n.cross(e1);
   double longest = 0.0;
-  for (const Section& s : sections) {
-    const std::vector<Eigen::Vector3d>& points = sketch.strokes[s.stroke].points;
-    double length = 0.0;
-    for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
-    longest = std::max(longest, length);
-  }
+  for (const Section& s : sections) longest = std::max(longest, sketch.strokes[s.stroke].length());
   const auto count = static_cast<std::size_t>(
       std::clamp(std::ceil(longest / options.edge), 24.0, 4096.0));
-  // rings[s][k]: section s's stroke point in direction k.
+  // rings[s][k] = columns[k][s]: section s's stroke point in direction k.
   std::vector<std::vector<Eigen::Vector3d>> rings(sections.size(), std::vector<Eigen::Vector3d>(count));
+  std::vector<std::vector<Eigen::Vector3d>> columns(count, std::vector<Eigen::Vector3d>(sections.size()));
   for (std::size_t s = 0; s < sections.size(); ++s) {
     const std::vector<Eigen::Vector3d>& points = sketch.strokes[sections[s].stroke].points;
     for (std::size_t k = 0; k < count; ++k) {
       const double angle = 2.0 * kPi * static_cast<double>(k) / static_cast<double>(count);
       if (!farthest_crossing(points, sections[s].loop.center, e1, e2, angle, rings[s][k]))
         return std::nullopt;
+      columns[k][s] = rings[s][k];
     }
   }
 
@@ -203,11 +199,7 @@ std::optional<Loft> loft_sections(const Sketch& sketch, const LoftOptions& optio
     for (int i = 0; i < steps; ++i) {
       const double t = static_cast<double>(i) / steps;
       std::vector<Eigen::Vector3d> ring(count);
-      for (std::size_t k = 0; k < count; ++k) {
-        std::vector<Eigen::Vector3d> column(sections.size());
-        for (std::size_t q = 0; q < sections.size(); ++q) column[q] = rings[q][k];
-        ring[k] = hermite(column, heights, s, t);
-      }
+      for (std::size_t k = 0; k < count; ++k) ring[k] = hermite(columns[k], heights, s, t);
       chain.push_back(add_ring(ring));
     }
   }
@@ -238,7 +230,7 @@ std::optional<Loft> loft_sections(const Sketch& sketch, const LoftOptions& optio
                   .dot(loft.mesh.V.row(loft.mesh.F(f, 1)).cross(loft.mesh.V.row(loft.mesh.F(f, 2))));
   if (volume < 0.0) loft.mesh.F.col(1).swap(loft.mesh.F.col(2));
 
-  // Every stroke must lie on it, not only the sections.
+  // The other strokes must lie on it too (a profile on its side, a section's diameter on a cap).
   const ClosestFaceTree tree(loft.mesh.V, loft.mesh.F);
   std::vector<double> distances;
   for (const Stroke& stroke : sketch.strokes) {

@@ -1,6 +1,6 @@
 #pragma once
 // A proxy lofted through a sketch's parallel section loops: a dress drawn as a waist circle, a wavy
-// hem and a profile, a vase as a few rings. Such sketches are too sparse for VIPSS, whose zero set
+// hem and a profile. Such sketches are too sparse for VIPSS, whose zero set
 // then runs out between the sections to the polygonisation box; the surface the designer means
 // passes through each section in turn. Tried by make_proxy() only where VIPSS's surface lies
 // mostly far from every stroke, and kept only when it holds every stroke.
