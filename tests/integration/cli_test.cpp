@@ -169,6 +169,47 @@ TEST(Cli, ProxyLeavesOutAStrokeThatDepictsNoSurfaceAsSurfaceDoes) {
   EXPECT_GT(reach(), 0.9);
 }
 
+TEST(Cli, ProxySaysWhenItIsLoftedThroughSections) {
+  // A dress: a four-lobed hem at z = 0, a waist circle at z = 2, two profile lines. VIPSS's
+  // surface lies 69% far from every stroke; with outline_most 0.5 that counts as framing no
+  // surface, and the proxy is lofted through the two sections.
+  TempDir dir;
+  Sketch sketch;
+  const auto section = [](double z, double r, double lobes) {
+    return testing::sample_curve(
+        [=](double a) {
+          const double radius = r * (1.0 + lobes * std::cos(4.0 * a));
+          return Eigen::Vector3d(radius * std::cos(a), radius * std::sin(a), z);
+        },
+        0.0, 2.0 * M_PI, 0.01);
+  };
+  sketch.strokes.push_back(section(0.0, 1.0, 0.3));
+  sketch.strokes.push_back(section(2.0, 0.5, 0.0));
+  for (const double side : {-1.0, 1.0})
+    sketch.strokes.push_back(testing::sample_curve(
+        [=](double t) { return Eigen::Vector3d(side * (1.3 - 0.8 * t), 0.0, 2.0 * t); }, 0.0, 1.0, 0.01));
+  write_sketch(sketch, dir / "s.json");
+  const CliResult r = run_cli(dir, {"proxy", (dir / "s.json").string(), "-o", (dir / "p.ply").string(),
+                                    "--report", (dir / "r.json").string(), "--param",
+                                    "proxy.outline_most=0.5"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("lofted through 2 section strokes"), std::string::npos) << r.err;
+  const auto report = nlohmann::json::parse(testing::read_text(dir / "r.json"));
+  EXPECT_EQ(report["vipss"]["loft_sections"], 2);
+  // Between the sections, within the hem's lobes.
+  const TriMesh proxy = read_mesh(dir / "p.ply");
+  for (const auto v : proxy.vertices()) {
+    const Eigen::Vector3d p = to_eigen(proxy.point(v));
+    ASSERT_GT(p.z(), -0.01);
+    ASSERT_LT(p.z(), 2.01);
+    ASSERT_LT(std::hypot(p.x(), p.y()), 1.31);
+  }
+  // Without it, VIPSS's surface is kept.
+  const CliResult plain = run_cli(dir, {"proxy", (dir / "s.json").string(), "-o", (dir / "p.ply").string()});
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_EQ(plain.err.find("lofted"), std::string::npos) << plain.err;
+}
+
 TEST(Cli, MissingOrInvalidFilesExitWith3NamingTheFile) {
   TempDir dir;
   testing::write_text(dir / "broken.json", R"({"format": "sketchsurf-sketch", "version": 1, "strokes": [)");

@@ -140,6 +140,9 @@ void run_proxy(const ProxyCommandOptions& given, const GlobalOptions& global) {
   if (!global.quiet)
     std::cerr << "proxy: " << report.vertices << " vertices, " << report.faces << " faces, "
               << report.topology.components << " component(s), genus " << report.topology.genus
+              << (report.loft_sections > 0
+                      ? ", lofted through " + std::to_string(report.loft_sections) + " section strokes"
+                      : std::string())
               << ", " << report.total_seconds << " s\n";
 }
 
