@@ -169,7 +169,7 @@ TEST(Cli, ProxyLeavesOutAStrokeThatDepictsNoSurfaceAsSurfaceDoes) {
   EXPECT_GT(reach(), 0.9);
 }
 
-TEST(Cli, ProxySaysWhenItIsLoftedThroughSections) {
+TEST(Cli, ProxyAndSurfaceSayWhenTheProxyIsLoftedThroughSections) {
   // A dress: a four-lobed hem at z = 0, a waist circle at z = 2, two profile lines. VIPSS's
   // surface lies 69% far from every stroke; with outline_most 0.5 that counts as framing no
   // surface, and the proxy is lofted through the two sections.
@@ -208,6 +208,13 @@ TEST(Cli, ProxySaysWhenItIsLoftedThroughSections) {
   const CliResult plain = run_cli(dir, {"proxy", (dir / "s.json").string(), "-o", (dir / "p.ply").string()});
   ASSERT_EQ(plain.code, 0) << plain.err;
   EXPECT_EQ(plain.err.find("lofted"), std::string::npos) << plain.err;
+  // `surface` says so too, and how to keep VIPSS's surface.
+  const CliResult surfaced = run_cli(dir, {"surface", (dir / "s.json").string(), "-o",
+                                           (dir / "s.ply").string(), "--param", "proxy.outline_most=0.5"});
+  ASSERT_EQ(surfaced.code, 0) << surfaced.err;
+  EXPECT_NE(surfaced.err.find("lofted through 2 section strokes (--param proxy.loft_fit=0"),
+            std::string::npos)
+      << surfaced.err;
 }
 
 TEST(Cli, MissingOrInvalidFilesExitWith3NamingTheFile) {

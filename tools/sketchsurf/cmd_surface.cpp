@@ -279,6 +279,10 @@ void run_surface(const SurfaceCommandOptions& opt, const GlobalOptions& global) 
     std::cerr << opt.sketch << ": note: kept the surface closed at the rim(s) found in the strokes ("
               << result.report.opening_failure << "); mark the rim strokes with --boundary-strokes to "
               << "open it\n";
+  if (!global.quiet && result.report.proxy.loft_sections > 0)
+    std::cerr << opt.sketch << ": note: the strokes frame too little surface for VIPSS; the proxy was "
+              << "lofted through " << result.report.proxy.loft_sections
+              << " section strokes (--param proxy.loft_fit=0 keeps VIPSS's surface)\n";
   if (!global.quiet && result.report.symmetry) {
     // Four digits, round-off noise shown as 0: the plane as a user would type it.
     const auto num = [&](double v, double noise) {
