@@ -14,9 +14,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "surfacing/closest_face.h"
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
-#include "surfacing/closest_face.h"
 #include "surfacing/proxy/attract.h"
 #include "surfacing/proxy/loft.h"
 #include "surfacing/proxy/point_grid.h"
@@ -947,6 +947,13 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     }
     r.polygonize_seconds += seconds_since(t);
   }
+  r.lambda = kept.lambda;
+  r.windows = kept.windows;
+  r.bridges = kept.bridges;
+  r.necks = kept.necks;
+  r.far_area = kept.far;
+  r.vipss = kept.vipss->summary;
+  r.evaluations = kept.evaluations;
   // Sections too sparse for VIPSS (a dress's waist and hem and a profile: its zero set runs out
   // between them to the box): the surface lofted through them, when it holds every stroke.
   if (options.loft_fit > 0.0 && (kept.mesh.F.rows() == 0 || kept.far > options.outline_most)) {
@@ -977,13 +984,6 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     }
     r.polygonize_seconds += seconds_since(t);
   }
-  r.lambda = kept.lambda;
-  r.windows = kept.windows;
-  r.bridges = kept.bridges;
-  r.necks = kept.necks;
-  r.far_area = kept.far;
-  r.vipss = kept.vipss->summary;
-  r.evaluations = kept.evaluations;
   if (kept.mesh.F.rows() == 0)
     throw Error::processing("VIPSS found no closed surface through the strokes");
   TriMesh mesh = mesh_from_matrices(kept.mesh.V, kept.mesh.F);

@@ -174,7 +174,7 @@ struct ProxyReport {
   VipssSummary vipss;             ///< automatic proxy only: the kept solve
   double lambda = 0.0;            ///< automatic proxy: the smoothing weight used
   double far_area = 0.0;          ///< automatic proxy: area fraction of the kept solve's surface
-                                  ///< farther than far_distance from every stroke
+                                  ///< (or of the loft) farther than far_distance from every stroke
   double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
   bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
   std::size_t loft_sections = 0;  ///< automatic proxy: the section loops it was lofted through
