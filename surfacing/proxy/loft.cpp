@@ -11,6 +11,7 @@ namespace sketchsurf {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr int kMaxSmoothingPasses = 200;  // a section far longer than its directions are many
 
 struct Section {
   std::size_t stroke = 0;
@@ -137,13 +138,24 @@ std::optional<Loft> loft_sections(const Sketch& sketch, const LoftOptions& optio
   std::vector<std::vector<Eigen::Vector3d>> rings(sections.size(), std::vector<Eigen::Vector3d>(count));
   std::vector<std::vector<Eigen::Vector3d>> columns(count, std::vector<Eigen::Vector3d>(sections.size()));
   for (std::size_t s = 0; s < sections.size(); ++s) {
-    const std::vector<Eigen::Vector3d>& points = sketch.strokes[sections[s].stroke].points;
+    const Stroke& stroke = sketch.strokes[sections[s].stroke];
     for (std::size_t k = 0; k < count; ++k) {
       const double angle = 2.0 * kPi * static_cast<double>(k) / static_cast<double>(count);
-      if (!farthest_crossing(points, sections[s].loop.center, e1, e2, angle, rings[s][k]))
+      if (!farthest_crossing(stroke.points, sections[s].loop.center, e1, e2, angle, rings[s][k]))
         return std::nullopt;
-      columns[k][s] = rings[s][k];
     }
+    // A hand-drawn section's jitter, crossing after crossing, would corrugate the loft along its
+    // rulings: each ring is smoothed by passes of the binomial filter (1, 2, 1) / 4 round it, whose
+    // spread after n passes is sqrt(n / 2) directions, to about options.smoothing.
+    const double spacing = stroke.length() / static_cast<double>(count);
+    const int passes = static_cast<int>(std::ceil(2.0 * std::pow(options.smoothing / spacing, 2.0)));
+    std::vector<Eigen::Vector3d>& ring = rings[s];
+    for (int pass = 0; pass < std::min(passes, kMaxSmoothingPasses); ++pass) {
+      const std::vector<Eigen::Vector3d> before = ring;
+      for (std::size_t k = 0; k < count; ++k)
+        ring[k] = 0.25 * before[(k + count - 1) % count] + 0.5 * before[k] + 0.25 * before[(k + 1) % count];
+    }
+    for (std::size_t k = 0; k < count; ++k) columns[k][s] = ring[k];
   }
 
   Loft loft;

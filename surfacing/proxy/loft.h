@@ -23,6 +23,9 @@ struct LoftOptions {
                                    ///< their common normal
   double fit = 0.02;               ///< the loft holds the strokes when 95% of their points lie
                                    ///< within this distance of it
+  double smoothing = 0.0075;        ///< each section's outline is smoothed over about this length
+                                   ///< (the spread of a binomial filter): a hand's jitter would
+                                   ///< corrugate the loft along its rulings; 0 = as drawn
 };
 
 /// What loft_sections() built.

@@ -119,6 +119,39 @@ TEST(Loft, AWavySectionIsFollowedAllRound) {
   EXPECT_GT(on_hem, 140);  // the ring has one direction per 0.05 of the hem's length (8.1)
 }
 
+TEST(Loft, AHandsJitterIsSmoothedAway) {
+  // The frustum's sections drawn with a zigzag of +-0.02 in radius, one point in two out: each ring
+  // smoothed over 0.06 lies within 0.01 of the cone's radius; as drawn, its crossings stray farther.
+  Sketch sketch = frustum();
+  for (int s = 0; s < 2; ++s) {
+    const double r = s == 0 ? 1.0 : 0.5;
+    sketch.strokes[s] = section(2.0 * s, [](double) { return 1.0; }, 600);
+    for (std::size_t i = 0; i < sketch.strokes[s].points.size(); ++i) {
+      Eigen::Vector3d& p = sketch.strokes[s].points[i];
+      const double jitter = (i % 2 == 0 ? 0.02 : -0.02) * (i + 1 < sketch.strokes[s].points.size());
+      p.head<2>() *= r + jitter;
+    }
+  }
+  const auto worst = [&](double smoothing) {
+    LoftOptions options;
+    options.edge = 0.02;
+    options.smoothing = smoothing;
+    options.fit = 0.05;  // the zigzag's points lie 0.02 off the smoothed loft
+    const std::optional<Loft> loft = loft_sections(sketch, options);
+    EXPECT_TRUE(loft);
+    double most = 0.0;
+    if (loft)
+      for (Eigen::Index i = 0; i < loft->mesh.V.rows(); ++i) {
+        const Eigen::Vector3d p = loft->mesh.V.row(i).transpose();
+        if (p.z() > 1e-9 && p.z() < 2.0 - 1e-9)
+          most = std::max(most, std::abs(std::hypot(p.x(), p.y()) - (1.0 - 0.25 * p.z())));
+      }
+    return most;
+  };
+  EXPECT_LT(worst(0.06), 0.01);
+  EXPECT_GT(worst(0.0), 0.015);
+}
+
 TEST(Loft, NoLoftWhenAStrokeLiesOffIt) {
   // A spike out of the side: 10% of the points are a tube's length away from any loft.
   Sketch sketch = frustum();
