@@ -11,7 +11,9 @@ namespace sketchsurf {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kMaxSmoothingPasses = 200;  // a section far longer than its directions are many
+// Bounds the smoothing passes of a section much shorter than the longest (its directions are
+// dense along it, so many passes make the same spread).
+constexpr double kMaxSmoothingPasses = 200.0;
 
 struct Section {
   std::size_t stroke = 0;
@@ -148,9 +150,10 @@ std::optional<Loft> loft_sections(const Sketch& sketch, const LoftOptions& optio
     // rulings: each ring is smoothed by passes of the binomial filter (1, 2, 1) / 4 round it, whose
     // spread after n passes is sqrt(n / 2) directions, to about options.smoothing.
     const double spacing = stroke.length() / static_cast<double>(count);
-    const int passes = static_cast<int>(std::ceil(2.0 * std::pow(options.smoothing / spacing, 2.0)));
+    const int passes = static_cast<int>(
+        std::min(std::ceil(2.0 * std::pow(options.smoothing / spacing, 2.0)), kMaxSmoothingPasses));
     std::vector<Eigen::Vector3d>& ring = rings[s];
-    for (int pass = 0; pass < std::min(passes, kMaxSmoothingPasses); ++pass) {
+    for (int pass = 0; pass < passes; ++pass) {
       const std::vector<Eigen::Vector3d> before = ring;
       for (std::size_t k = 0; k < count; ++k)
         ring[k] = 0.25 * before[(k + count - 1) % count] + 0.5 * before[k] + 0.25 * before[(k + 1) % count];
