@@ -70,6 +70,7 @@ py::dict report_dict(const SurfaceResult& r) {
   for (const Decoration& dec : rep.decorations) ignored.push_back(dec.id);
   d["ignored_strokes"] = ignored;
   d["tubes"] = rep.tubes;
+  d["loft_sections"] = rep.proxy.loft_sections;
   if (rep.symmetry) {
     const Plane& plane = rep.symmetry->plane;
     d["symmetry"] = py::dict(py::arg("normal") = std::vector<double>{plane.normal.x(), plane.normal.y(), plane.normal.z()},

@@ -115,3 +115,23 @@ def test_half_a_sketch_is_completed_and_reported():
     *_, as_drawn = sketchsurf.surface(strokes, {**QUICK, "prepare.complete_half": 0})
     assert as_drawn["symmetry"] is None or as_drawn["symmetry"]["half_ends"] == 0
 
+
+
+def test_a_proxy_lofted_through_sections_is_reported():
+    """A dress: a four-lobed hem, a waist circle above it, two profiles. Where VIPSS's surface counts
+    as framing no surface (here from 50% of it far from every stroke), the proxy is lofted."""
+    a = np.linspace(0, 2 * np.pi, 400)
+    hem = 1 + 0.3 * np.cos(4 * a)
+    strokes = [np.column_stack([hem * np.cos(a), hem * np.sin(a), np.zeros_like(a)]),
+               np.column_stack([0.5 * np.cos(a), 0.5 * np.sin(a), np.full_like(a, 2.0)])]
+    for side in (-1, 1):
+        t = np.linspace(0, 1, 100)
+        strokes.append(np.column_stack([side * (1.3 - 0.8 * t), np.zeros_like(t), 2 * t]))
+    # At the default resolution: at a coarse one the Laplacian lifts the held side's rim up to 1%
+    # of the diagonal past the waist.
+    V, F, labels, sharp, report = sketchsurf.surface(strokes, {"segment.restarts": 2, "proxy.outline_most": 0.5})
+    assert report["loft_sections"] == 2
+    assert V[:, 2].min() > -0.02 and V[:, 2].max() < 2.02
+    assert np.hypot(V[:, 0], V[:, 1]).max() < 1.32
+    *_, plain = sketchsurf.surface(strokes, QUICK)
+    assert plain["loft_sections"] == 0
