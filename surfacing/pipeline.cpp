@@ -5,7 +5,6 @@
 #include <cmath>
 #include <functional>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 
 #include "surfacing/error.h"
@@ -327,9 +326,7 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   // A proxy lofted through the sketch's sections is already the surface they depict between them;
   // a curved region's model, fitted to a few section and profile strokes, only bulges there: every
   // curved region stays at the proxy (planes, a section's cap, are still projected onto).
-  if (report.proxy.loft_sections > 0)
-    extract_options.smooth_fallback.margin = extract_options.smooth_fallback.agree =
-        std::numeric_limits<double>::infinity();
+  if (report.proxy.loft_sections > 0) extract_options.smooth_fallback.hold_curved = true;
   ExtractedSurface surface = [&] {
     try {
       return extract(result.proxy, result.segmentation.labels, result.segmentation.models, work,

@@ -72,21 +72,24 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
   }
   std::vector<char> closer(models.size(), 0);  // the proxy closer to the region's strokes
   for (std::size_t r = 0; r < models.size(); ++r)
-    closer[r] = count[r] >= options.min_points && to_proxy[r] < (1.0 + options.margin) * to_model[r] &&
-               models[r].degree > 1;
+    closer[r] = count[r] >= options.min_points && models[r].degree > 1 &&
+               (options.hold_curved || to_proxy[r] < (1.0 + options.margin) * to_model[r]);
   out.regions = static_cast<std::size_t>(
       std::count_if(count.begin(), count.end(), [&](std::size_t c) { return c >= options.min_points; }));
   if (std::none_of(closer.begin(), closer.end(), [](char c) { return c != 0; })) return kept;
 
-  // How far the start of the solve (optimize.h) would move each region's own vertices.
-  LabeledMesh projected = mesh;
-  project_vertices(projected, models, energy.projection_steps, energy.max_projection_step * diagonal,
-                   energy.threads, std::vector<char>(mesh.labels.size(), 0));
+  // How far the start of the solve (optimize.h) would move each region's own vertices (not
+  // asked when every curved region is held).
   std::vector<std::vector<double>> moves(models.size());
-  for (auto v : mesh.mesh.vertices())
-    if (mesh.labels[v.idx()].size() == 1)
-      moves[mesh.labels[v.idx()].front()].push_back(
-          (to_eigen(mesh.mesh.point(v)) - to_eigen(projected.mesh.point(v))).norm());
+  if (!options.hold_curved) {
+    LabeledMesh projected = mesh;
+    project_vertices(projected, models, energy.projection_steps, energy.max_projection_step * diagonal,
+                     energy.threads, std::vector<char>(mesh.labels.size(), 0));
+    for (auto v : mesh.mesh.vertices())
+      if (mesh.labels[v.idx()].size() == 1)
+        moves[mesh.labels[v.idx()].front()].push_back(
+            (to_eigen(mesh.mesh.point(v)) - to_eigen(projected.mesh.point(v))).norm());
+  }
   for (std::size_t r = 0; r < models.size(); ++r) {
     if (!closer[r]) continue;
     auto& m = moves[r];

@@ -44,6 +44,10 @@ struct SmoothFallbackOptions {
   double agree = 0.02;       ///< a region stays projected when the projection onto its model moves
                              ///< 5% of its vertices farther than this (fraction of the diagonal):
                              ///< there the model corrects the proxy's shape, not its detail
+  bool hold_curved = false;  ///< every region that is not a plane stays at the proxy, whatever its
+                             ///< model (margin and agree unused): the proxy is already the surface
+                             ///< the strokes depict between them (lofted through their sections),
+                             ///< where a model fitted to those few strokes only bulges
   bool valid(std::string* why = nullptr) const;
 };
 
@@ -63,7 +67,8 @@ struct SmoothFallbackSummary {
 /// proxy is below (1 + options.margin) times their mean squared first-order distance to its
 /// model (each capped at the reach), its model is not a plane (degree 1), and the projection that
 /// starts the solve (project_vertices() with `energy`'s steps) moves at most 5% of its own
-/// vertices farther than options.agree * diagonal. Fills summary->regions, kept and held.
+/// vertices farther than options.agree * diagonal; with options.hold_curved, when it has enough
+/// points and its model is not a plane. Fills summary->regions, kept and held.
 /// Deterministic; `strokes` are those the surface is fitted to.
 std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
                                    const StrokeSegments& strokes, double diagonal,

@@ -120,6 +120,20 @@ TEST(SmoothFallback, AModelThatReshapesTheRegionIsProjectedOntoEvenWhenFartherFr
   EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, loose, {}), std::vector<char>({0, 1}));
 }
 
+TEST(SmoothFallback, HoldingCurvedRegionsKeepsEvenModelsThatWouldReshapeThem) {
+  // A lofted proxy: every region that is not a plane stays, the exact model and the one that would
+  // move the second sphere by 0.2 alike.
+  const Scene s = two_spheres();
+  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
+                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.2)};
+  SmoothFallbackOptions hold;
+  hold.hold_curved = true;
+  SmoothFallbackSummary summary;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, hold, {}, &summary), std::vector<char>(2, 1));
+  EXPECT_EQ(summary.kept, 2u);
+  EXPECT_EQ(summary.held, s.proxy.mesh.n_vertices());
+}
+
 TEST(SmoothFallback, APlaneIsAlwaysProjectedOnto) {
   // A unit square waved by 1% in z, drawn with lines along y on the wave: the proxy passes through
   // the strokes, the plane z = 0 misses them by up to 0.01 (less than `agree` moves it). As a
@@ -152,6 +166,9 @@ TEST(SmoothFallback, APlaneIsAlwaysProjectedOnto) {
   plane.degree = 1;
   plane.coefficients = Eigen::Vector4d(0.0, 0.0, 0.0, 1.0);  // z
   EXPECT_EQ(regions_at_proxy(proxy, {plane}, strokes, std::sqrt(2.0), {}, {}), std::vector<char>{0});
+  SmoothFallbackOptions hold;  // also when every curved region is held
+  hold.hold_curved = true;
+  EXPECT_EQ(regions_at_proxy(proxy, {plane}, strokes, std::sqrt(2.0), hold, {}), std::vector<char>{0});
   ImplicitModel flat_quadric;
   flat_quadric.degree = 2;
   flat_quadric.coefficients = Eigen::VectorXd::Zero(10);
