@@ -9,6 +9,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/extract/mirror.h"
+#include "surfacing/sketch/crossings.h"
 #include "surfacing/sketch/decorations.h"
 #include "surfacing/sketch/scribbles.h"
 #include "surfacing/sketch/symmetry.h"
@@ -35,6 +36,18 @@ bool Params::valid(std::string* why) const {
   }
   if (!(checks.scribble_fill >= 1.0 && std::isfinite(checks.scribble_fill))) {
     if (why) *why = "checks.scribble_fill must be at least 1";
+    return false;
+  }
+  if (!(checks.refuse_unmet >= 0.0 && checks.refuse_unmet <= 1.0)) {
+    if (why) *why = "checks.refuse_unmet must be in [0, 1]";
+    return false;
+  }
+  if (!(checks.meet_reach > 0.0 && checks.meet_reach <= 1.0)) {
+    if (why) *why = "checks.meet_reach must be in (0, 1]";
+    return false;
+  }
+  if (!(checks.meet_angle >= 0.0 && checks.meet_angle <= 90.0)) {
+    if (why) *why = "checks.meet_angle must be in [0, 90] degrees";
     return false;
   }
   return prepare.valid(why) && proxy.valid(why) && segment.valid(why) && extract.valid(why);
@@ -135,6 +148,10 @@ const std::map<std::string, Setter>& parameter_table() {
       {"checks.refuse_score", setter([](Params& p) -> auto& { return p.checks.refuse_score; })},
       {"checks.refuse_scribbled", setter([](Params& p) -> auto& { return p.checks.refuse_scribbled; })},
       {"checks.scribble_fill", setter([](Params& p) -> auto& { return p.checks.scribble_fill; })},
+      {"checks.refuse_unmet", setter([](Params& p) -> auto& { return p.checks.refuse_unmet; })},
+      {"checks.meet_reach", setter([](Params& p) -> auto& { return p.checks.meet_reach; })},
+      {"checks.meet_angle", setter([](Params& p) -> auto& { return p.checks.meet_angle; })},
+      {"checks.meet_least_strokes", setter([](Params& p) -> auto& { return p.checks.meet_least_strokes; })},
       {"extract.gamma_2d", setter([](Params& p) -> auto& { return p.extract.energy.gamma_2d; })},
       {"extract.gamma_1d", setter([](Params& p) -> auto& { return p.extract.energy.gamma_1d; })},
       {"extract.smooth_angle", setter([](Params& p) -> auto& { return p.extract.energy.smooth_angle; })},
@@ -260,6 +277,23 @@ Sketch Surfacer::prepare(const Sketch& input, bool refuse_scribbles, SurfaceRepo
               << "(hatching, writing or a painterly scene?): " << 100.0 * scribbled
               << "% of the ink is scribbles, strokes that wind round and round over an area "
               << "instead of drawing a curve. Draw the object's outlines and cross-sections, give a "
+              << "proxy mesh, or surface it anyway (checks.refuse_score = 0; the command line's --force)";
+      throw Error::processing(refusal.str());
+    }
+  }
+  // So is ink laid in strokes side by side that never cross another (hatching, writing).
+  const auto drawn = static_cast<std::size_t>(
+      std::count_if(sketch.strokes.begin(), sketch.strokes.end(), [](const Stroke& s) { return !s.ignored; }));
+  if (refuse_scribbles && params_.checks.refuse_score > 0.0 && params_.checks.refuse_unmet > 0.0 &&
+      drawn >= params_.checks.meet_least_strokes) {
+    const double unmet = unmet_share(sketch, params_.checks.meet_reach * report.diagonal,
+                                     params_.checks.meet_angle * M_PI / 180.0);
+    if (unmet > params_.checks.refuse_unmet) {
+      std::ostringstream refusal;
+      refusal << std::fixed << std::setprecision(0) << "the strokes do not seem to depict one surface "
+              << "(hatching, writing or a painterly scene?): " << 100.0 * unmet
+              << "% of the ink is in strokes that meet no other stroke, where a surface sketch's "
+              << "outlines and sections cross. Draw the object's outlines and cross-sections, give a "
               << "proxy mesh, or surface it anyway (checks.refuse_score = 0; the command line's --force)";
       throw Error::processing(refusal.str());
     }

@@ -3,6 +3,7 @@
 // depict (sheets where no stroke is, surface outside the strokes' extent, spurious handles, holes,
 // self-intersections, ragged region borders). Every `surface` report carries them.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -31,10 +32,17 @@ struct CheckOptions {
                                 ///< diagonal) exceeds this: a surface that neither passes through
                                 ///< the strokes nor stays within them is not what they depict
                                 ///< (hatching, writing, a painterly scene); 0 = never refuse
-                                ///< (neither this nor scribbles)
+                                ///< (neither this, nor scribbles, nor unmet strokes)
   double refuse_scribbled = 0.5;  ///< ... and refuses a sketch, before surfacing, when more than
                                   ///< this share of its ink is scribbles (scribbles.h); 0 = off
   double scribble_fill = 5.0;     ///< a stroke is a scribble when its stroke_fill() exceeds this
+  double refuse_unmet = 0.9;      ///< ... and refuses a sketch, before surfacing, when more than
+                                  ///< this share of its ink is in strokes that meet no other
+                                  ///< stroke crosswise (crossings.h: hatching, writing); 0 = off
+  double meet_reach = 0.01;       ///< strokes meet within this distance (fraction of diagonal) ...
+  double meet_angle = 30.0;       ///< ... at more than this angle (degrees); only in sketches of
+  std::size_t meet_least_strokes = 10;  ///< at least this many strokes (fewer: a dab, an arrow
+                                        ///< in a plane, which the proxy refuses more precisely)
   unsigned seed = 1;
   unsigned threads = 0;         ///< 0 = all; the result does not depend on it
 };

@@ -1,0 +1,56 @@
+// Strokes that meet no other stroke: a curve network (a cube's edges and sections) has none, or few
+// when drawn over, a hatching scene (short parallel strokes in groups) is all of them; a stroke met
+// only by strokes along it, or only farther than the reach, is unmet.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "surfacing/sketch/crossings.h"
+#include "tests/support/shapes.h"
+
+namespace sketchsurf {
+namespace {
+
+using V3 = Eigen::Vector3d;
+
+constexpr double kReach = 0.01, kAngle = 30.0 * M_PI / 180.0;
+
+Stroke line(const V3& a, const V3& b) { return testing::polyline_stroke({a, b}, false); }
+
+Sketch two_lines(const V3& a0, const V3& a1, const V3& b0, const V3& b1) {
+  Sketch sketch;
+  sketch.strokes = {line(a0, a1), line(b0, b1)};
+  return sketch;
+}
+
+TEST(Crossings, ANetworkMeetsItselfAndHatchingDoesNot) {
+  EXPECT_EQ(unmet_share(testing::cube_sketch(), kReach, kAngle), 0.0);
+  // Drawn three times over, the passes cut short by up to 15% at each end: some stop short of every
+  // corner and meet nothing, far fewer than in a scene of hatching.
+  EXPECT_LT(unmet_share(testing::over_sketched(testing::cube_sketch(), 3, 0.003, 7), kReach, kAngle), 0.2);
+  EXPECT_EQ(unmet_share(testing::hatching_sketch(10, 3), kReach, kAngle), 1.0);
+  EXPECT_EQ(unmet_share(Sketch{}, kReach, kAngle), 0.0);
+}
+
+TEST(Crossings, StrokesMeetCrosswiseWithinTheReach) {
+  // Crossing at right angles, and one ending on the other (a T).
+  EXPECT_EQ(unmet_share(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(0, -1, 0), V3(0, 1, 0)), kReach, kAngle), 0.0);
+  EXPECT_EQ(unmet_share(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(0, 0.005, 0), V3(0, 1, 0)), kReach, kAngle),
+            0.0);
+  // Side by side (over-sketching, hatching): not a meeting, however near.
+  EXPECT_EQ(unmet_share(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(-1, 0.005, 0), V3(1, 0.005, 0)), kReach, kAngle),
+            1.0);
+  // Crosswise but apart by twice the reach (one above the other).
+  EXPECT_EQ(unmet_share(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(0, -1, 0.02), V3(0, 1, 0.02)), kReach, kAngle),
+            1.0);
+  // The share counts length: a long stroke met, a short one alone.
+  Sketch sketch = two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(0, -1, 0), V3(0, 1, 0));
+  sketch.strokes.push_back(line(V3(5, 5, 5), V3(5.4, 5, 5)));
+  EXPECT_NEAR(unmet_share(sketch, kReach, kAngle), 0.4 / 4.4, 1e-3);
+  sketch.strokes.back().ignored = true;
+  EXPECT_EQ(unmet_share(sketch, kReach, kAngle), 0.0);
+}
+
+}  // namespace
+}  // namespace sketchsurf
