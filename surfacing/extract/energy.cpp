@@ -6,6 +6,8 @@
 
 #include <Eigen/Sparse>
 
+#include "surfacing/portable_math.h"
+
 namespace sketchsurf {
 
 double seam_weight(double angle, const MeshEnergyOptions& options) {
@@ -29,7 +31,7 @@ std::vector<double> regularization_weights(const LabeledMesh& mesh,
       const Eigen::Vector3d nb = models[labels[1]].gradient(x).normalized();
       // Unoriented normals: f and -f describe the same surface.
       const double c = std::min(1.0, std::abs(na.dot(nb)));
-      w[v.idx()] = std::isfinite(c) ? seam_weight(std::acos(c), options) : 0.0;
+      w[v.idx()] = std::isfinite(c) ? seam_weight(portable::acos(c), options) : 0.0;
     }
   });
   return w;
@@ -325,8 +327,10 @@ MeshEnergyTerms MeshEnergyFunction::terms(const double* x) const {
   e.regularize_1d = residuals.tail(residuals.size() - rows_2d).squaredNorm();
   for (const AttractTarget& t : energy_.attract)
     e.attract += energy_.attract_weight * (X.segment<3>(3 * t.vertex) - t.point).squaredNorm();
-  for (int v : energy_.plane_vertices)
-    e.plane += energy_.plane_weight * std::pow(energy_.plane->signed_distance(X.segment<3>(3 * v)), 2);
+  for (int v : energy_.plane_vertices) {
+    const double off = energy_.plane->signed_distance(X.segment<3>(3 * v));
+    e.plane += energy_.plane_weight * off * off;
+  }
   return e;
 }
 

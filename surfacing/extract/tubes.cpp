@@ -6,6 +6,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/extract/mirror.h"
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf {
 
@@ -73,7 +74,7 @@ void append_tube(TriMesh& mesh, const std::vector<Eigen::Vector3d>& x, double ra
     for (int k = 0; k < sides; ++k) {
       const double angle = 2.0 * M_PI * k / sides;
       ring[i * sides + k] =
-          mesh.add_vertex(to_openmesh(x[i] + radius * (std::cos(angle) * r[i] + std::sin(angle) * s)));
+          mesh.add_vertex(to_openmesh(x[i] + radius * (portable::cos(angle) * r[i] + portable::sin(angle) * s)));
     }
   }
   const auto at = [&](std::size_t i, int k) { return ring[i * sides + (k % sides)]; };

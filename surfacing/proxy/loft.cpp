@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "surfacing/closest_face.h"
+#include "surfacing/portable_math.h"
 #include "surfacing/sketch/openings.h"
 
 namespace sketchsurf {
@@ -52,7 +53,7 @@ std::vector<Section> parallel_family(const std::vector<Section>& loops, double c
 bool farthest_crossing(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& centre,
                        const Eigen::Vector3d& e1, const Eigen::Vector3d& e2, double angle,
                        Eigen::Vector3d& crossing) {
-  const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
+  const Eigen::Vector2d dir(portable::cos(angle), portable::sin(angle));
   double farthest = -1.0;
   const std::size_t n = points.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -121,7 +122,7 @@ std::optional<Loft> loft_sections(const Sketch& sketch, const LoftOptions& optio
   if (loops.size() < 2) return std::nullopt;
   Eigen::Vector3d n;
   std::vector<Section> sections =
-      parallel_family(loops, std::cos(options.parallel_degrees * kPi / 180.0), n);
+      parallel_family(loops, portable::cos(options.parallel_degrees * kPi / 180.0), n);
   if (sections.size() < 2) return std::nullopt;
   for (Section& s : sections) s.height = n.dot(s.loop.center);
   std::stable_sort(sections.begin(), sections.end(),
@@ -151,7 +152,7 @@ std::optional<Loft> loft_sections(const Sketch& sketch, const LoftOptions& optio
     // spread after n passes is sqrt(n / 2) directions, to about options.smoothing.
     const double spacing = stroke.length() / static_cast<double>(count);
     const int passes = static_cast<int>(
-        std::min(std::ceil(2.0 * std::pow(options.smoothing / spacing, 2.0)), kMaxSmoothingPasses));
+        std::min(std::ceil(2.0 * (options.smoothing / spacing) * (options.smoothing / spacing)), kMaxSmoothingPasses));
     std::vector<Eigen::Vector3d>& ring = rings[s];
     for (int pass = 0; pass < passes; ++pass) {
       const std::vector<Eigen::Vector3d> before = ring;

@@ -17,6 +17,7 @@
 #include "surfacing/closest_face.h"
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
+#include "surfacing/portable_math.h"
 #include "surfacing/proxy/attract.h"
 #include "surfacing/proxy/loft.h"
 #include "surfacing/proxy/point_grid.h"
@@ -153,7 +154,7 @@ struct Outline {
     double sum = 0.0, weight = 0.0;
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
     grid->for_each_within(x, std::sqrt(d0 + 9.0 * blend * blend), [&](int j, double d2) {
-      const double w = std::exp(-(d2 - d0) / (blend * blend));
+      const double w = portable::exp(-(d2 - d0) / (blend * blend));
       sum += w * ((x - points.row(j).transpose()).dot(normals.row(j).transpose()) - gaps[j]);
       n += w * normals.row(j).transpose();
       weight += w;
@@ -511,7 +512,7 @@ Framing surface_framing(const TriangleArrays& mesh, const PointGrid& strokes, co
     std::vector<double> angles;
     grid.for_each_within(x, 2.0 * d, [&](int i, double) {
       const Eigen::Vector3d e = points.row(i).transpose() - x;
-      if (std::abs(n.dot(e)) <= kCone * e.norm()) angles.push_back(std::atan2(v.dot(e), u.dot(e)));
+      if (std::abs(n.dot(e)) <= kCone * e.norm()) angles.push_back(portable::atan2(v.dot(e), u.dot(e)));
     });
     double gap = 2.0 * M_PI;
     if (!angles.empty()) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "surfacing/parallel.h"
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf {
 
@@ -296,7 +297,7 @@ constexpr double kDepictedTurn = 3.5;
 
 AroundSaddle strokes_around(const Saddle& s, const Sketch& unit, double reach) {
   const Eigen::Vector3d axis = s.axes.col(2), u = s.axes.col(0), v = s.axes.col(1);
-  const auto angle_of = [&](const Eigen::Vector3d& d) { return std::atan2(d.dot(v), d.dot(u)); };
+  const auto angle_of = [&](const Eigen::Vector3d& d) { return portable::atan2(d.dot(v), d.dot(u)); };
   const auto sector_of = [&](const Eigen::Vector3d& d) {
     return std::min(11, static_cast<int>((angle_of(d) + M_PI) / (2.0 * M_PI) * 12.0));
   };

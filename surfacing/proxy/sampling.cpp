@@ -56,7 +56,7 @@ Eigen::MatrixX3d sample_strokes(const Sketch& sketch, const SamplingOptions& opt
     if (d > far) far = d, next = i;
   }
   std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
-  const double min_d2 = std::pow(options.min_distance * diagonal, 2);
+  const double min_d2 = (options.min_distance * diagonal) * (options.min_distance * diagonal);
   std::vector<Eigen::Vector3d> chosen;
   chosen.reserve(std::min(n, options.count));
   while (chosen.size() < options.count) {

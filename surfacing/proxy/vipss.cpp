@@ -15,6 +15,7 @@
 #include "surfacing/error.h"
 #include "surfacing/lbfgs.h"
 #include "surfacing/parallel.h"
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf {
 
@@ -116,7 +117,7 @@ class ParallelSymProduct {
 void normals_from_angles(const double* angles, Index n, Vec& g) {
   for (Index i = 0; i < n; ++i) {
     const double t = angles[2 * i], p = angles[2 * i + 1];
-    g.segment<3>(3 * i) << std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t);
+    g.segment<3>(3 * i) << portable::sin(t) * portable::cos(p), portable::sin(t) * portable::sin(p), portable::cos(t);
   }
 }
 
@@ -135,10 +136,10 @@ class NormalEnergy : public detail::LbfgsFunction {
     for (Index i = 0; i < n; ++i) {
       const double t = angles[2 * i], p = angles[2 * i + 1];
       const Eigen::Vector3d dh = 2.0 * h.segment<3>(3 * i);
-      gradient[2 * i] = dh.dot(Eigen::Vector3d(std::cos(t) * std::cos(p),
-                                               std::cos(t) * std::sin(p), -std::sin(t)));
+      gradient[2 * i] = dh.dot(Eigen::Vector3d(portable::cos(t) * portable::cos(p),
+                                               portable::cos(t) * portable::sin(p), -portable::sin(t)));
       gradient[2 * i + 1] =
-          dh.dot(Eigen::Vector3d(-std::sin(t) * std::sin(p), std::sin(t) * std::cos(p), 0.0));
+          dh.dot(Eigen::Vector3d(-portable::sin(t) * portable::sin(p), portable::sin(t) * portable::cos(p), 0.0));
     }
     return std::isfinite(*cost);
   }
@@ -509,8 +510,8 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
     for (Index i = 0; i < n; ++i) {
       Eigen::Vector3d g = direction(i);
       g = g.norm() > 0 ? g.normalized() : Eigen::Vector3d::UnitZ();
-      angles[2 * i] = std::acos(std::clamp(g.z(), -1.0, 1.0));
-      angles[2 * i + 1] = std::atan2(g.y(), g.x());
+      angles[2 * i] = portable::acos(std::clamp(g.z(), -1.0, 1.0));
+      angles[2 * i + 1] = portable::atan2(g.y(), g.x());
     }
     return angles;
   };

@@ -8,6 +8,7 @@
 
 #include "surfacing/closest_face.h"
 #include "surfacing/parallel.h"
+#include "surfacing/portable_math.h"
 #include "surfacing/proxy/proxy.h"
 #include "surfacing/quality/sampling.h"
 #include "surfacing/sketch/stroke_segments.h"
@@ -98,7 +99,7 @@ bool surrounded(const V3& p, const V3& n, const Eigen::MatrixX3d& points, double
     const V3 d = V3(points.row(i)) - p;
     if (d.squaredNorm() > reach * reach) continue;
     const double x = d.dot(u), y = d.dot(w);
-    if (x * x + y * y > 0.0) angles.push_back(std::atan2(y, x));
+    if (x * x + y * y > 0.0) angles.push_back(portable::atan2(y, x));
   }
   if (angles.size() < 3) return false;
   std::sort(angles.begin(), angles.end());

@@ -6,6 +6,7 @@
 #include "surfacing/closest_face.h"
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf {
 
@@ -41,7 +42,7 @@ Eigen::MatrixX3d face_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i&
 }
 
 double angle_degrees(const V3& a, const V3& b) {
-  return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+  return portable::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 CreaseEvaluation evaluate_creases(const TriMesh& truth, const Eigen::MatrixX3d& result_normals,

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "surfacing/error.h"
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf {
 
@@ -30,7 +31,7 @@ class Random {
     do {
       for (int i = 0; i < 3; ++i) {
         const double u1 = 1.0 - uniform(), u2 = uniform();
-        d[i] = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+        d[i] = std::sqrt(-2.0 * portable::log(u1)) * portable::cos(2.0 * M_PI * u2);
       }
     } while (d.squaredNorm() < 1e-12);
     return d.normalized();
@@ -192,8 +193,8 @@ std::vector<Polyline> level_set(const MeshData& d, const std::vector<double>& va
 std::vector<Polyline> feature_curves(const MeshData& d, const SynthOptions& o,
                                      std::vector<char>* on_feature) {
   const TriMesh& m = d.mesh;
-  const double cos_sharp = std::cos(o.sharp_angle * M_PI / 180.0);
-  const double cos_corner = std::cos(o.corner_angle * M_PI / 180.0);
+  const double cos_sharp = portable::cos(o.sharp_angle * M_PI / 180.0);
+  const double cos_corner = portable::cos(o.corner_angle * M_PI / 180.0);
   std::vector<char> feature(m.n_edges(), 0);
   std::vector<int> degree(m.n_vertices(), 0);
   for (const auto e : m.edges()) {
@@ -316,7 +317,7 @@ void draw_vr(std::vector<Stroke>& out, const Polyline& base, bool second_copy, c
   for (std::size_t i = 0; i < p.size(); ++i) {
     V3 t = shift;
     for (int axis = 0; axis < 3; ++axis)
-      for (int k = 0; k < 3; ++k) t[axis] += a * std::sin(2 * M_PI * arc[i] / wave[axis][k] + phase[axis][k]);
+      for (int k = 0; k < 3; ++k) t[axis] += a * portable::sin(2 * M_PI * arc[i] / wave[axis][k] + phase[axis][k]);
     p[i] += t;
   }
   // A gap: the stroke lifted for gap_length somewhere in its middle part.
@@ -408,8 +409,8 @@ Sketch synthesize_sketch(const TriMesh& mesh, const SynthOptions& o) {
     for (const int v : d.corners(f)) near_feature[f.idx()] |= on_feature[v];
   for (int k = 0; k < o.silhouettes; ++k) {
     const double azimuth = 0.5 + k * 2.39996323, elevation = (15.0 + 45.0 * (k % 3) / 2.0) * M_PI / 180.0;
-    const V3 dir = std::cos(elevation) * (std::cos(azimuth) * axes[0] + std::sin(azimuth) * axes[1]) +
-                   std::sin(elevation) * axes[2];
+    const V3 dir = portable::cos(elevation) * (portable::cos(azimuth) * axes[0] + portable::sin(azimuth) * axes[1]) +
+                   portable::sin(elevation) * axes[2];
     for (std::size_t v = 0; v < values.size(); ++v) values[v] = d.vertex_normals[v].dot(dir);
     for (auto& l : level_set(d, values, near_feature)) lines.push_back(std::move(l));
   }

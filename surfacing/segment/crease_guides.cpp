@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "surfacing/error.h"
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf {
 
@@ -50,7 +51,7 @@ ArcPolyline arc_polyline(const Stroke& stroke, double closing_gap) {
 double angle_deg(const V3& a, const V3& b) {
   const double n = a.norm() * b.norm();
   if (!(n > 0)) return 0.0;
-  return std::acos(std::clamp(a.dot(b) / n, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  return portable::acos(std::clamp(a.dot(b) / n, -1.0, 1.0)) * 180.0 / std::numbers::pi;
 }
 
 }  // namespace
@@ -126,7 +127,7 @@ std::vector<std::array<V3, 2>> crease_guides(const Sketch& sketch, double diagon
   std::vector<std::array<V3, 2>> guides;
   if (!options.enabled) return guides;
   const std::vector<StrokeCorner> corners = stroke_corners(sketch, diagonal, options);
-  const double cos_align = std::cos(options.alignment * std::numbers::pi / 180.0);
+  const double cos_align = portable::cos(options.alignment * std::numbers::pi / 180.0);
   const double lo = options.min_gap * diagonal, hi = options.max_gap * diagonal;
   const std::size_t n = corners.size();
   // nearest[2 i + side]: the closest corner along +axis (side 0) or -axis (side 1) of corner i.
@@ -165,8 +166,8 @@ std::vector<std::array<V3, 2>> guides_on_folds(const std::vector<std::array<V3, 
   std::string why;
   if (!options.valid(&why)) throw Error::usage(why);
   const double r = options.fold_radius * diagonal;
-  const double cos_fold = std::cos(options.min_fold * std::numbers::pi / 180.0);
-  const double sin_align = std::sin(options.alignment * std::numbers::pi / 180.0);
+  const double cos_fold = portable::cos(options.min_fold * std::numbers::pi / 180.0);
+  const double sin_align = portable::sin(options.alignment * std::numbers::pi / 180.0);
   std::vector<std::array<V3, 2>> kept;
   std::vector<Eigen::Index> near;
   for (const auto& g : guides) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "surfacing/error.h"
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf {
 namespace {
@@ -295,7 +296,7 @@ NormalTerms terms_from_moments(const ImplicitModel& frame, const NormalMoments& 
   double S[3][NormalMoments::kPowers];
   for (int g = 0; g < gradient_monomials; ++g) {
     const auto& ge = kMonomials[g];
-    const double unit = std::pow(frame.scale, -(ge[0] + ge[1] + ge[2]));
+    const double unit = portable::pow(frame.scale, -(ge[0] + ge[1] + ge[2]));
     for (int i = 0; i < 3; ++i) {
       double acc = 0.0;
       for (int a = 0; a <= ge[0]; ++a)
@@ -384,7 +385,7 @@ ImplicitModel solve_fit(int degree, Eigen::Ref<const Eigen::MatrixX3d> points, E
       (columns.colwise().squaredNorm() / static_cast<double>(np)).cwiseSqrt();
   for (int k = 1; k < t; ++k)
     deviations[k - 1] =
-        std::max(deviations[k - 1], kDeviationFloor * std::pow(radius, monomial_degree(k)));
+        std::max(deviations[k - 1], kDeviationFloor * portable::pow(radius, monomial_degree(k)));
   columns.array().rowwise() /= deviations.array();
 
   // Normal equations of Eq. 6 in the normalised basis.

@@ -13,6 +13,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
+#include "surfacing/portable_math.h"
 #include "surfacing/segment/expansion.h"
 #include "surfacing/segment/spectral.h"
 
@@ -135,7 +136,7 @@ class RunProgress {
     if (std::this_thread::get_id() != caller_) return;
     double sum = 0.0;
     for (std::size_t r = 0; r < iterations_.size(); ++r)
-      sum += finished_[r] ? 1.0 : 1.0 - std::pow(0.7, iterations_[r].load());
+      sum += finished_[r] ? 1.0 : 1.0 - portable::pow(0.7, iterations_[r].load());
     reported_ = std::max(reported_, std::min(sum / static_cast<double>(iterations_.size()), 1.0));
     try {
       progress_.update("segmentation", reported_);
@@ -279,7 +280,8 @@ struct Segmenter::Impl {
     }
     // Eq. 10's rho = (10 eps)^2 is a squared distance: it goes through Eq. 2's normalisation
     // like the fidelity of a point 10 eps away from its model.
-    const double rho = std::pow(options.penalty_factor * options.epsilon, 2) * fidelity_scale;
+    const double penalty_distance = options.penalty_factor * options.epsilon;
+    const double rho = penalty_distance * penalty_distance * fidelity_scale;
     for (const auto& c : s.constraints)
       for (int vc : c.vertices)
         for (int a = 0; a < L; ++a)

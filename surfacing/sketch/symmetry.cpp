@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "surfacing/closest_face.h"
+#include "surfacing/portable_math.h"
 #include "surfacing/sketch/stroke_point_grid.h"
 #include "surfacing/sketch/stroke_segments.h"
 
@@ -145,7 +146,7 @@ std::optional<DetectedMirror> detect_half_mirror(const Sketch& sketch, const Mir
   if (!(diagonal > 0.0)) return std::nullopt;
   const std::vector<FreeEnd> ends = free_ends(sketch, diagonal, options);
   const double tolerance = options.tolerance * diagonal;
-  const double arrives = std::cos(options.half_angle * M_PI / 180.0);
+  const double arrives = portable::cos(options.half_angle * M_PI / 180.0);
 
   std::optional<DetectedMirror> best;
   for (const FreeEnd& seed : ends) {

@@ -25,10 +25,11 @@ struct CliRun {
   std::string err;
 };
 
-CliRun run_cli(const std::string& args, const fs::path& dir) {
+/// Runs `[env] sketchsurf -q ARGS` (env: shell variable assignments, e.g. "NAME=value ").
+CliRun run_cli(const std::string& args, const fs::path& dir, const std::string& env = {}) {
   const fs::path err = dir / "stderr.txt";
   const int status =
-      std::system((std::string(SKETCHSURF_CLI) + " -q " + args + " 2>" + err.string()).c_str());
+      std::system((env + std::string(SKETCHSURF_CLI) + " -q " + args + " 2>" + err.string()).c_str());
   std::ifstream in(err);
   std::stringstream text;
   text << in.rdbuf();
@@ -150,6 +151,38 @@ TEST(SurfaceCli, ObjOutputHasNormalsAndAGroupPerRegion) {
   EXPECT_EQ(corners_with_normals, 3 * faces);
   EXPECT_GT(normals, mesh.n_vertices());  // split along the creases
   EXPECT_EQ(groups.size(), 6u);           // the cube's six sides
+}
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// glibc picks its exp, log, sin, cos, atan2, acos, ... by the CPU (FMA and AVX2 variants, which
+// differ in the last bit of some results); GLIBC_TUNABLES hides those features from it, as on an
+// older CPU. A sketch drawn by synth in the vr style (tremor, gaps, overshoots) and surfaced with
+// the automatic proxy gives the same bytes either way. On a CPU without FMA and AVX2 both runs
+// take the same path and the test says nothing.
+TEST(SurfaceCli, ASketchSurfacesToTheSameBitsWhicheverMathTheCpuGets) {
+  const fs::path dir = temp_dir("same_bits");
+  write_mesh(testing::rounded_cylinder_mesh(3, 0.4, 0.5, 0.1), dir / "truth.ply");
+  const std::string older_cpu = "GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA ";
+  for (const std::string& env : {std::string(), older_cpu}) {
+    const std::string tag = env.empty() ? "this" : "older";
+    const CliRun drawn = run_cli("synth " + (dir / "truth.ply").string() + " --style vr --seed 3 -o " +
+                                     (dir / (tag + ".json")).string(),
+                                 dir, env);
+    ASSERT_EQ(drawn.code, 0) << drawn.err;
+    const CliRun r = run_cli("surface " + (dir / (tag + ".json")).string() + " -o " +
+                                 (dir / (tag + ".ply")).string() +
+                                 " --param proxy.edge=0.02 --param segment.restarts=2",
+                             dir, env);
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  EXPECT_EQ(file_bytes(dir / "this.json"), file_bytes(dir / "older.json"));
+  EXPECT_EQ(file_bytes(dir / "this.ply"), file_bytes(dir / "older.ply"));
 }
 
 TEST(SurfaceCli, ACupIsOpenedWithANoteAndKeptClosedWithClosed) {

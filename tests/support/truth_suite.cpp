@@ -7,6 +7,7 @@
 #include <map>
 
 #include "surfacing/error.h"
+#include "surfacing/portable_math.h"
 #include "surfacing/proxy/polygonize.h"
 #include "surfacing/proxy/remesh.h"
 #include "tests/support/shapes.h"
@@ -168,7 +169,7 @@ TriMesh revolve(const std::vector<V2>& profile, double edge) {
     } else {
       for (int j = 0; j < m; ++j) {
         const double phi = 2 * M_PI * j / m;
-        r.push_back(b.add({p.x() * std::cos(phi), p.x() * std::sin(phi), p.y()}));
+        r.push_back(b.add({p.x() * portable::cos(phi), p.x() * portable::sin(phi), p.y()}));
       }
     }
     ring.push_back(r);
@@ -363,7 +364,7 @@ const std::vector<Entry>& entries() {
          for (int q = 0; q < 4; ++q)
            for (int i = 0; i <= 8; ++i) {
              const double a = M_PI / 2 * (q + i / 8.0);
-             corners.push_back(centres[q] + f * V2(std::cos(a), std::sin(a)));
+             corners.push_back(centres[q] + f * V2(portable::cos(a), portable::sin(a)));
            }
          Region r;
          r.add_rings({V2(0, 0)}, outline(corners, kEdge), 14);
@@ -386,7 +387,7 @@ const std::vector<Entry>& entries() {
          for (const auto v : m.vertices()) {
            const V3 p = to_eigen(m.point(v));
            const double a = p.x() / radius, rr = radius + p.z();
-           m.set_point(v, to_openmesh(V3(rr * std::sin(a), p.y(), rr * std::cos(a) - radius)));
+           m.set_point(v, to_openmesh(V3(rr * portable::sin(a), p.y(), rr * portable::cos(a) - radius)));
          }
          return shape("curved_shell", "thin plate bent to a cylindrical shell, 0.03 thick", m, 0, 1,
                       true, false);
@@ -418,10 +419,10 @@ const std::vector<Entry>& entries() {
        }},
       {"wineglass", [] {
          const auto bowl = [](double t) {
-           return V2(0.03 + 0.29 * std::sin(0.55 * M_PI * t) / std::sin(0.55 * M_PI), -0.05 + 0.55 * t);
+           return V2(0.03 + 0.29 * portable::sin(0.55 * M_PI * t) / portable::sin(0.55 * M_PI), -0.05 + 0.55 * t);
          };
          const auto foot = [](double t) {
-           return V2(0.26 - 0.23 * t, -0.49 + 0.04 * std::sin(0.5 * M_PI * t));
+           return V2(0.26 - 0.23 * t, -0.49 + 0.04 * portable::sin(0.5 * M_PI * t));
          };
          const auto p = sample_profile({line({0, -0.5}, {0.26, -0.5}), line({0.26, -0.5}, {0.26, -0.49}),
                                         foot, line({0.03, -0.45}, {0.03, -0.05}), bowl}, 0.02);
@@ -431,14 +432,14 @@ const std::vector<Entry>& entries() {
       {"vase", [] {
          const auto wall = [](double t) {
            const double z = -0.45 + 0.9 * t;
-           return V2(0.22 + 0.12 * std::sin(M_PI * (1.1 * t + 0.1)) - 0.05 * t, z);
+           return V2(0.22 + 0.12 * portable::sin(M_PI * (1.1 * t + 0.1)) - 0.05 * t, z);
          };
          const auto p = sample_profile({line({0, -0.45}, wall(0)), wall}, 0.025);
          return shape("vase", "open vase with a bulging wall", revolve(p, 0.025), 0, 1, false, true);
        }},
       {"bottle", [] {
          const auto shoulder = [](double t) {
-           return V2(0.07 + 0.13 * (0.5 + 0.5 * std::cos(M_PI * t)), 0.1 + 0.2 * t);
+           return V2(0.07 + 0.13 * (0.5 + 0.5 * portable::cos(M_PI * t)), 0.1 + 0.2 * t);
          };
          const auto p = sample_profile({line({0, -0.5}, {0.2, -0.5}), line({0.2, -0.5}, {0.2, 0.1}),
                                         shoulder, line({0.07, 0.3}, {0.07, 0.45}), line({0.07, 0.45}, {0, 0.45})},

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "surfacing/error.h"
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf::io_detail {
 
@@ -57,7 +58,7 @@ Triangles triangles(const TriMesh& mesh) {
     std::array<double, 3> angle{};
     for (int i = 0; i < 3; ++i) {
       const Eigen::Vector3d a = p[(i + 1) % 3] - p[i], b = p[(i + 2) % 3] - p[i];
-      const double value = std::atan2(a.cross(b).norm(), a.dot(b));
+      const double value = portable::atan2(a.cross(b).norm(), a.dot(b));
       angle[i] = std::isfinite(value) ? value : 0.0;
     }
     t.slot[f.idx()] = static_cast<int>(t.vertices.size());
@@ -77,8 +78,8 @@ std::size_t corner(const Triangles& t, int i, int v) {
 
 /// Whether edge `e` (not a border, between triangles f0 and f1) is a crease.
 bool is_crease(const Triangles& t, int f0, int f1, bool both_sharp) {
-  static const double crease = std::cos(kCreaseAngle * M_PI / 180.0);
-  static const double sharp_crease = std::cos(kSharpCreaseAngle * M_PI / 180.0);
+  static const double crease = portable::cos(kCreaseAngle * M_PI / 180.0);
+  static const double sharp_crease = portable::cos(kSharpCreaseAngle * M_PI / 180.0);
   const bool degenerate = t.normals[f0].isZero(0.0) || t.normals[f1].isZero(0.0);
   return !degenerate && t.normals[f0].dot(t.normals[f1]) < (both_sharp ? sharp_crease : crease);
 }
