@@ -268,18 +268,21 @@ Sketch Surfacer::prepare(const Sketch& input, bool refuse_scribbles, SurfaceRepo
       throw Error(ErrorKind::Input, "no stroke is left to surface once the strokes that depict no "
                                     "surface are ignored; keep them with prepare.ignore_decorations = 0");
   }
-  // Scribbled ink depicts no surface: refused here, before the work of surfacing it into a blob.
+  // Scribbled ink depicts no surface: refused here, before the work of surfacing it into a blob;
+  // `share` of the ink is `what`.
+  const auto refuse_ink = [](double share, const char* what) {
+    std::ostringstream refusal;
+    refusal << std::fixed << std::setprecision(0) << "the strokes do not seem to depict one surface "
+            << "(hatching, writing or a painterly scene?): " << 100.0 * share << "% of the ink is " << what
+            << ". Draw the object's outlines and cross-sections, give a proxy mesh, or surface it anyway "
+            << "(checks.refuse_score = 0; the command line's --force)";
+    throw Error::processing(refusal.str());
+  };
   if (refuse_scribbles && params_.checks.refuse_score > 0.0 && params_.checks.refuse_scribbled > 0.0) {
     const double scribbled = scribbled_share(sketch, params_.checks.scribble_fill);
-    if (scribbled > params_.checks.refuse_scribbled) {
-      std::ostringstream refusal;
-      refusal << std::fixed << std::setprecision(0) << "the strokes do not seem to depict one surface "
-              << "(hatching, writing or a painterly scene?): " << 100.0 * scribbled
-              << "% of the ink is scribbles, strokes that wind round and round over an area "
-              << "instead of drawing a curve. Draw the object's outlines and cross-sections, give a "
-              << "proxy mesh, or surface it anyway (checks.refuse_score = 0; the command line's --force)";
-      throw Error::processing(refusal.str());
-    }
+    if (scribbled > params_.checks.refuse_scribbled)
+      refuse_ink(scribbled,
+                 "scribbles, strokes that wind round and round over an area instead of drawing a curve");
   }
   // So is ink laid in strokes side by side that never cross another (hatching, writing).
   const auto drawn = static_cast<std::size_t>(
@@ -288,15 +291,9 @@ Sketch Surfacer::prepare(const Sketch& input, bool refuse_scribbles, SurfaceRepo
       drawn >= params_.checks.meet_least_strokes) {
     const double unmet = unmet_share(sketch, params_.checks.meet_reach * report.diagonal,
                                      params_.checks.meet_angle * M_PI / 180.0);
-    if (unmet > params_.checks.refuse_unmet) {
-      std::ostringstream refusal;
-      refusal << std::fixed << std::setprecision(0) << "the strokes do not seem to depict one surface "
-              << "(hatching, writing or a painterly scene?): " << 100.0 * unmet
-              << "% of the ink is in strokes that meet no other stroke, where a surface sketch's "
-              << "outlines and sections cross. Draw the object's outlines and cross-sections, give a "
-              << "proxy mesh, or surface it anyway (checks.refuse_score = 0; the command line's --force)";
-      throw Error::processing(refusal.str());
-    }
+    if (unmet > params_.checks.refuse_unmet)
+      refuse_ink(unmet,
+                 "in strokes that meet no other stroke, where a surface sketch's outlines and sections cross");
   }
   const auto is_boundary = [](const Stroke& s) { return s.boundary && !s.ignored; };
   if (params_.prepare.open_rims && std::none_of(sketch.strokes.begin(), sketch.strokes.end(), is_boundary)) {

@@ -1,6 +1,8 @@
 #include "surfacing/portable_math.h"
 
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace sketchsurf::portable {
@@ -32,50 +34,41 @@ constexpr double kPio6Hi = 0.5235987755982989, kPio6Lo = -5.360408832255455e-17;
 constexpr double kSqrt3 = 1.7320508075688772;
 constexpr double kTanPi12 = 0.2679491924311227;  // 2 - sqrt(3)
 
-// e^r - 1 for |r| <= ln(2) / 2 by its Taylor series to r^13 (remainder below
-// 1e-17 relative).
+// c[0] + c[1] x + ... + c[N-1] x^(N-1) by Horner's rule.
+template <std::size_t N>
+double horner(double x, const std::array<double, N>& c) {
+  double p = c[N - 1];
+  for (std::size_t i = N - 1; i-- > 0;) p = p * x + c[i];
+  return p;
+}
+
+// Taylor coefficients, computed by the compiler (correctly rounded divisions).
+constexpr double kF3 = 6.0, kF4 = 24.0, kF5 = 120.0, kF6 = 720.0, kF7 = 5040.0, kF8 = 40320.0, kF9 = 362880.0,
+                 kF10 = 3628800.0, kF11 = 39916800.0, kF12 = 479001600.0, kF13 = 6227020800.0,
+                 kF14 = 87178291200.0, kF15 = 1307674368000.0, kF16 = 20922789888000.0,
+                 kF17 = 355687428096000.0, kF18 = 6402373705728000.0;
+
+// e^r - 1 for |r| <= ln(2) / 2 by its Taylor series to r^13 (remainder below 1e-17 relative).
 double expm1_reduced(double r) {
-  double p = 1.0 / 6227020800.0;
-  p = p * r + 1.0 / 479001600.0;
-  p = p * r + 1.0 / 39916800.0;
-  p = p * r + 1.0 / 3628800.0;
-  p = p * r + 1.0 / 362880.0;
-  p = p * r + 1.0 / 40320.0;
-  p = p * r + 1.0 / 5040.0;
-  p = p * r + 1.0 / 720.0;
-  p = p * r + 1.0 / 120.0;
-  p = p * r + 1.0 / 24.0;
-  p = p * r + 1.0 / 6.0;
-  p = p * r + 0.5;
-  return r + r * r * p;
+  constexpr std::array<double, 12> c{0.5,     1 / kF3, 1 / kF4,  1 / kF5,  1 / kF6,  1 / kF7,
+                                     1 / kF8, 1 / kF9, 1 / kF10, 1 / kF11, 1 / kF12, 1 / kF13};
+  return r + r * r * horner(r, c);
 }
 
 // sin r for |r| <= pi / 4 by its Taylor series to r^17.
 double sin_reduced(double r) {
+  constexpr std::array<double, 8> c{-1 / kF3,  1 / kF5,  -1 / kF7,  1 / kF9,
+                                    -1 / kF11, 1 / kF13, -1 / kF15, 1 / kF17};
   const double r2 = r * r;
-  double p = 1.0 / 355687428096000.0;  // 17!
-  p = p * r2 - 1.0 / 1307674368000.0;  // 15!
-  p = p * r2 + 1.0 / 6227020800.0;     // 13!
-  p = p * r2 - 1.0 / 39916800.0;       // 11!
-  p = p * r2 + 1.0 / 362880.0;         // 9!
-  p = p * r2 - 1.0 / 5040.0;
-  p = p * r2 + 1.0 / 120.0;
-  p = p * r2 - 1.0 / 6.0;
-  return r + r * r2 * p;
+  return r + r * r2 * horner(r2, c);
 }
 
 // cos r for |r| <= pi / 4 by its Taylor series to r^18.
 double cos_reduced(double r) {
+  constexpr std::array<double, 8> c{-1 / kF4,  1 / kF6,  -1 / kF8,  1 / kF10,
+                                    -1 / kF12, 1 / kF14, -1 / kF16, 1 / kF18};
   const double r2 = r * r;
-  double p = 1.0 / 6402373705728000.0;  // 18!
-  p = p * r2 - 1.0 / 20922789888000.0;  // 16!
-  p = p * r2 + 1.0 / 87178291200.0;     // 14!
-  p = p * r2 - 1.0 / 479001600.0;       // 12!
-  p = p * r2 + 1.0 / 3628800.0;         // 10!
-  p = p * r2 - 1.0 / 40320.0;
-  p = p * r2 + 1.0 / 720.0;
-  p = p * r2 - 1.0 / 24.0;
-  return 1.0 - (0.5 * r2 + r2 * r2 * p);
+  return 1.0 - (0.5 * r2 + r2 * r2 * horner(r2, c));
 }
 
 // x = k pi / 2 + r with |r| <= pi / 4 (about); quadrant = k mod 4.
