@@ -74,7 +74,8 @@ void append_tube(TriMesh& mesh, const std::vector<Eigen::Vector3d>& x, double ra
     for (int k = 0; k < sides; ++k) {
       const double angle = 2.0 * M_PI * k / sides;
       ring[i * sides + k] =
-          mesh.add_vertex(to_openmesh(x[i] + radius * (portable::cos(angle) * r[i] + portable::sin(angle) * s)));
+          mesh.add_vertex(
+              to_openmesh(x[i] + radius * (portable::cos(angle) * r[i] + portable::sin(angle) * s)));
     }
   }
   const auto at = [&](std::size_t i, int k) { return ring[i * sides + (k % sides)]; };

@@ -116,8 +116,9 @@ class ParallelSymProduct {
 // Unit normals from spherical angles (theta_i, phi_i) stacked in `angles` (2n).
 void normals_from_angles(const double* angles, Index n, Vec& g) {
   for (Index i = 0; i < n; ++i) {
-    const double t = angles[2 * i], p = angles[2 * i + 1];
-    g.segment<3>(3 * i) << portable::sin(t) * portable::cos(p), portable::sin(t) * portable::sin(p), portable::cos(t);
+    const double st = portable::sin(angles[2 * i]), ct = portable::cos(angles[2 * i]);
+    const double sp = portable::sin(angles[2 * i + 1]), cp = portable::cos(angles[2 * i + 1]);
+    g.segment<3>(3 * i) << st * cp, st * sp, ct;
   }
 }
 
@@ -134,12 +135,11 @@ class NormalEnergy : public detail::LbfgsFunction {
     cholesky_solve(factor_, h);
     *cost = g.dot(h);
     for (Index i = 0; i < n; ++i) {
-      const double t = angles[2 * i], p = angles[2 * i + 1];
+      const double st = portable::sin(angles[2 * i]), ct = portable::cos(angles[2 * i]);
+      const double sp = portable::sin(angles[2 * i + 1]), cp = portable::cos(angles[2 * i + 1]);
       const Eigen::Vector3d dh = 2.0 * h.segment<3>(3 * i);
-      gradient[2 * i] = dh.dot(Eigen::Vector3d(portable::cos(t) * portable::cos(p),
-                                               portable::cos(t) * portable::sin(p), -portable::sin(t)));
-      gradient[2 * i + 1] =
-          dh.dot(Eigen::Vector3d(-portable::sin(t) * portable::sin(p), portable::sin(t) * portable::cos(p), 0.0));
+      gradient[2 * i] = dh.dot(Eigen::Vector3d(ct * cp, ct * sp, -st));
+      gradient[2 * i + 1] = dh.dot(Eigen::Vector3d(-st * sp, st * cp, 0.0));
     }
     return std::isfinite(*cost);
   }

@@ -317,7 +317,8 @@ void draw_vr(std::vector<Stroke>& out, const Polyline& base, bool second_copy, c
   for (std::size_t i = 0; i < p.size(); ++i) {
     V3 t = shift;
     for (int axis = 0; axis < 3; ++axis)
-      for (int k = 0; k < 3; ++k) t[axis] += a * portable::sin(2 * M_PI * arc[i] / wave[axis][k] + phase[axis][k]);
+      for (int k = 0; k < 3; ++k)
+        t[axis] += a * portable::sin(2 * M_PI * arc[i] / wave[axis][k] + phase[axis][k]);
     p[i] += t;
   }
   // A gap: the stroke lifted for gap_length somewhere in its middle part.
@@ -409,8 +410,9 @@ Sketch synthesize_sketch(const TriMesh& mesh, const SynthOptions& o) {
     for (const int v : d.corners(f)) near_feature[f.idx()] |= on_feature[v];
   for (int k = 0; k < o.silhouettes; ++k) {
     const double azimuth = 0.5 + k * 2.39996323, elevation = (15.0 + 45.0 * (k % 3) / 2.0) * M_PI / 180.0;
-    const V3 dir = portable::cos(elevation) * (portable::cos(azimuth) * axes[0] + portable::sin(azimuth) * axes[1]) +
-                   portable::sin(elevation) * axes[2];
+    const V3 dir =
+        portable::cos(elevation) * (portable::cos(azimuth) * axes[0] + portable::sin(azimuth) * axes[1]) +
+        portable::sin(elevation) * axes[2];
     for (std::size_t v = 0; v < values.size(); ++v) values[v] = d.vertex_normals[v].dot(dir);
     for (auto& l : level_set(d, values, near_feature)) lines.push_back(std::move(l));
   }

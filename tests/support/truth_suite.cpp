@@ -419,7 +419,8 @@ const std::vector<Entry>& entries() {
        }},
       {"wineglass", [] {
          const auto bowl = [](double t) {
-           return V2(0.03 + 0.29 * portable::sin(0.55 * M_PI * t) / portable::sin(0.55 * M_PI), -0.05 + 0.55 * t);
+           return V2(0.03 + 0.29 * portable::sin(0.55 * M_PI * t) / portable::sin(0.55 * M_PI),
+                     -0.05 + 0.55 * t);
          };
          const auto foot = [](double t) {
            return V2(0.26 - 0.23 * t, -0.49 + 0.04 * portable::sin(0.5 * M_PI * t));
