@@ -1,6 +1,8 @@
 #include "surfacing/portable_math.h"
 
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -71,9 +73,23 @@ double cos_reduced(double r) {
   return 1.0 - (0.5 * r2 + r2 * r2 * horner(r2, c));
 }
 
+// x rounded to the nearest integer (ties to even) for |x| < 2^51 without a library call: adding
+// and subtracting 1.5 * 2^52 leaves no fraction bits.
+double round_small(double x) {
+  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
+  return (x + kShift) - kShift;
+}
+
+// 2^k for an integer k (as a double) by its bits in the normal range, else by ldexp.
+double two_to(double k) {
+  if (k < -1022.0 || k > 1023.0) return std::ldexp(1.0, static_cast<int>(k));
+  return std::bit_cast<double>(static_cast<std::uint64_t>(static_cast<std::int64_t>(k) + 1023) << 52);
+}
+
 // x = k pi / 2 + r with |r| <= pi / 4 (about); quadrant = k mod 4.
 double reduce_half_pi(double x, int& quadrant) {
-  const double k = std::floor(x * kTwoOverPi + 0.5);
+  const double scaled = x * kTwoOverPi;
+  const double k = std::fabs(scaled) < 1e15 ? round_small(scaled) : std::floor(scaled + 0.5);
   quadrant = static_cast<int>(k - 4.0 * std::floor(0.25 * k));
   return ((x - k * kPio2Part1) - k * kPio2Part2) - k * kPio2Part3;
 }
@@ -100,9 +116,13 @@ double exp(double x) {
   if (std::isnan(x)) return x;
   if (x > kExpMax) return kInf;
   if (x < kExpMin) return 0.0;
-  const double k = std::floor(x * kInvLn2 + 0.5);
+  const double k = round_small(x * kInvLn2);
   const double r = (x - k * kLn2Hi) - k * kLn2Lo;
-  return std::ldexp(1.0 + expm1_reduced(r), static_cast<int>(k));
+  const double m = 1.0 + expm1_reduced(r);
+  // 2^k m: in two steps where 2^k alone would overflow or be subnormal.
+  if (k > 1023.0) return m * two_to(k - 1.0) * 2.0;
+  if (k < -1022.0) return m * two_to(k + 60.0) * two_to(-60.0);
+  return m * two_to(k);
 }
 
 double log(double x) {
