@@ -2,9 +2,9 @@
 
 #include <array>
 #include <bit>
-#include <cstdint>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 namespace sketchsurf::portable {
@@ -21,8 +21,7 @@ constexpr double kExpMax = 709.782712893384;    // largest x with a finite e^x
 constexpr double kExpMin = -745.1332191019412;  // below: e^x rounds to 0
 constexpr double kSqrtHalf = 0.7071067811865476;
 
-// pi / 2 in three parts of 33 bits (the last rounded): k * part is exact for
-// |k| < 2^20.
+// pi / 2 in three parts of 33 bits (the last rounded): k * part is exact for |k| < 2^20.
 constexpr double kPio2Part1 = 1.5707963267341256;
 constexpr double kPio2Part2 = 6.077100506303966e-11;
 constexpr double kPio2Part3 = 2.0222662487959506e-21;
@@ -80,9 +79,8 @@ double round_small(double x) {
   return (x + kShift) - kShift;
 }
 
-// 2^k for an integer k (as a double) by its bits in the normal range, else by ldexp.
+// 2^k for an integer k (as a double) in the normal range [-1022, 1023], by its bits.
 double two_to(double k) {
-  if (k < -1022.0 || k > 1023.0) return std::ldexp(1.0, static_cast<int>(k));
   return std::bit_cast<double>(static_cast<std::uint64_t>(static_cast<std::int64_t>(k) + 1023) << 52);
 }
 
@@ -94,8 +92,7 @@ double reduce_half_pi(double x, int& quadrant) {
   return ((x - k * kPio2Part1) - k * kPio2Part2) - k * kPio2Part3;
 }
 
-// atan t for |t| <= 2 - sqrt(3) by its Taylor series to t^29 (remainder below
-// 1e-18 relative).
+// atan t for |t| <= 2 - sqrt(3) by its Taylor series to t^29 (remainder below 1e-18 relative).
 double atan_series(double t) {
   const double t2 = t * t;
   double p = 1.0 / 29.0;
@@ -103,8 +100,8 @@ double atan_series(double t) {
   return t + t * t2 * p;
 }
 
-// atan a for 0 <= a <= 1: beyond tan(pi / 12) through atan a = pi / 6 + atan((a
-// sqrt 3 - 1) / (a + sqrt 3)).
+// atan a for 0 <= a <= 1: beyond tan(pi / 12) through atan a = pi / 6 + atan((a sqrt 3 - 1) /
+// (a + sqrt 3)).
 double atan_unit(double a) {
   if (a <= kTanPi12) return atan_series(a);
   return kPio6Hi + (atan_series((a * kSqrt3 - 1.0) / (a + kSqrt3)) + kPio6Lo);

@@ -14,12 +14,12 @@ namespace {
 
 struct Sample {
   Eigen::Vector3d point;
-  Eigen::Vector3d direction;  // unit tangent (zero on a stroke of one point)
+  Eigen::Vector3d direction;  // unit tangent of the segment the sample lies on
   std::size_t stroke;
 };
 
-// The polyline resampled every `spacing` of arc length (its last point
-// included), each sample with the unit direction of the segment it lies on.
+// The polyline resampled every `spacing` of arc length (its last point included), each sample with
+// the unit direction of the segment it lies on.
 void resample(const Stroke& stroke, std::size_t index, double spacing, std::vector<Sample>& out) {
   double carried = 0.0;  // arc length since the last sample
   for (std::size_t i = 1; i < stroke.points.size(); ++i) {

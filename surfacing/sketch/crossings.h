@@ -1,20 +1,18 @@
 #pragma once
-// Strokes that meet no other stroke. A surface sketch is a network: its
-// outlines and sections cross or end on one another. Hatching, shading lines
-// and writing lay strokes side by side, each on its own, and whatever is
-// surfaced through them is a blob around the ink. The measure needs no surface,
-// so such a scene can be refused before any surfacing work; unlike the result's
-// distance to the strokes it does not change from one run to the next.
+// Strokes that meet no other stroke. A surface sketch is a network: its outlines and sections cross
+// or end on one another. Hatching, shading lines and writing lay strokes side by side, each on its
+// own, and whatever is surfaced through them is a blob around the ink. The measure needs no
+// surface, so such a scene can be refused before any surfacing work; unlike the result's distance
+// to the strokes it does not change from one run to the next.
 
 #include "surfacing/sketch/sketch.h"
 
 namespace sketchsurf {
 
-/// Share of the sketch's ink (stroke length, strokes not ignored) in strokes
-/// that meet no other stroke crosswise: no point of theirs lies within `reach`
-/// of a point of another stroke whose direction there differs from theirs by
-/// more than `angle` (radians; strokes drawn over each other, side by side, do
-/// not meet). Strokes are resampled every reach / 2. 0 for a sketch without
+/// Share of the sketch's ink (stroke length, strokes not ignored) in strokes that meet no other
+/// stroke crosswise: no point of theirs lies within `reach` of a point of another stroke whose
+/// direction there differs from theirs by more than `angle` (radians; strokes drawn over each
+/// other, side by side, do not meet). Strokes are resampled every reach / 2. 0 for a sketch without
 /// ink.
 double unmet_share(const Sketch& sketch, double reach, double angle);
 

@@ -1,19 +1,18 @@
-// portable:: against the C library's long double functions (a wider reference
-// than any double result): within a few units in the last place over the ranges
-// the surfacing uses, the special values as C defines them, and results that do
-// not depend on the CPU's FMA.
-
-#include "surfacing/portable_math.h"
+// portable:: against the C library's long double functions (a wider reference than any double
+// result): within a few units in the last place over the ranges the surfacing uses, and the
+// special values as C defines them. (That the results do not depend on the CPU's features is
+// SurfaceCli.ASketchSurfacesToTheSameBitsWhicheverMathTheCpuGets.)
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <functional>
 #include <limits>
 #include <numbers>
 #include <random>
-#include <string>
+
+#include "surfacing/portable_math.h"
 
 namespace sketchsurf {
 namespace {
@@ -26,8 +25,7 @@ double ulps(double value, long double exact) {
   return static_cast<double>(std::fabs(static_cast<long double>(value) - exact) / ulp);
 }
 
-// Largest error of `f` against `reference` over `count` uniform arguments in
-// [lo, hi].
+// Largest error of `f` against `reference` over `count` uniform arguments in [lo, hi].
 double worst_ulps(const std::function<double(double)>& f,
                   const std::function<long double(long double)>& reference, double lo, double hi,
                   int count = 200000) {
