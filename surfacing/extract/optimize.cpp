@@ -200,7 +200,8 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
     parallel_for(0, static_cast<std::size_t>(n), threads, [&](std::size_t i) {
       const double* from = &proxy[3 * i];
       const double* to = &at[3 * i];
-      const double moved = (Eigen::Vector3d(to[0], to[1], to[2]) - Eigen::Vector3d(from[0], from[1], from[2])).norm();
+      const double moved =
+          (Eigen::Vector3d(to[0], to[1], to[2]) - Eigen::Vector3d(from[0], from[1], from[2])).norm();
       far[i] = !held[i] && ((tree && moved > reach && to_strokes(to) > to_strokes(from) + reach) ||
                             (outside_box(to) && !outside_box(from)));
     });

@@ -152,7 +152,8 @@ std::optional<Loft> loft_sections(const Sketch& sketch, const LoftOptions& optio
     // spread after n passes is sqrt(n / 2) directions, to about options.smoothing.
     const double spacing = stroke.length() / static_cast<double>(count);
     const int passes = static_cast<int>(
-        std::min(std::ceil(2.0 * (options.smoothing / spacing) * (options.smoothing / spacing)), kMaxSmoothingPasses));
+        std::min(std::ceil(2.0 * (options.smoothing / spacing) * (options.smoothing / spacing)),
+                 kMaxSmoothingPasses));
     std::vector<Eigen::Vector3d>& ring = rings[s];
     for (int pass = 0; pass < passes; ++pass) {
       const std::vector<Eigen::Vector3d> before = ring;

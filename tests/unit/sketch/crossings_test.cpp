@@ -39,8 +39,9 @@ TEST(Crossings, StrokesMeetCrosswiseWithinTheReach) {
   EXPECT_EQ(unmet_share(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(0, 0.005, 0), V3(0, 1, 0)), kReach, kAngle),
             0.0);
   // Side by side (over-sketching, hatching): not a meeting, however near.
-  EXPECT_EQ(unmet_share(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(-1, 0.005, 0), V3(1, 0.005, 0)), kReach, kAngle),
-            1.0);
+  EXPECT_EQ(
+      unmet_share(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(-1, 0.005, 0), V3(1, 0.005, 0)), kReach, kAngle),
+      1.0);
   // Crosswise but apart by twice the reach (one above the other).
   EXPECT_EQ(unmet_share(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(0, -1, 0.02), V3(0, 1, 0.02)), kReach, kAngle),
             1.0);
