@@ -8,9 +8,9 @@
 // meshes and other regions (an egg split into one region on one CPU and into eight on another).
 // These functions use only IEEE-754 additions, multiplications, divisions and square roots, in an
 // order fixed by the source, and their file is compiled without contracting them into FMAs, so
-// that a sketch surfaces to the same bits on every x86-64 machine. Their accuracy: exp, log, sin
-// and cos within 2 units in the last place of the exact result, atan, atan2 and acos within 3
-// (tested against the C library's long double functions).
+// that the C library's choice no longer shows in what a sketch surfaces to. Their accuracy: exp,
+// log, sin and cos within 2 units in the last place of the exact result, atan, atan2 and acos
+// within 3 (tested against the C library's long double functions).
 
 namespace sketchsurf::portable {
 
