@@ -8,11 +8,14 @@ namespace sketchsurf {
 StrokePointGrid::StrokePointGrid(const Sketch& sketch, double cell, bool with_ignored) : cell_(cell) {
   for (std::size_t s = 0; s < sketch.strokes.size(); ++s)
     if (with_ignored || !sketch.strokes[s].ignored)
-      for (const Eigen::Vector3d& p : sketch.strokes[s].points) cells_[cell_key(index(p))].push_back({p, s});
+      for (std::size_t i = 0; i < sketch.strokes[s].points.size(); ++i) {
+        const Eigen::Vector3d& p = sketch.strokes[s].points[i];
+        cells_[cell_key(index(p))].push_back({p, s, i});
+      }
 }
 
-std::vector<std::size_t> StrokePointGrid::strokes_near(const Eigen::Vector3d& p, std::size_t self, double r) const {
-  std::vector<std::size_t> out;
+bool StrokePointGrid::any_near(const Eigen::Vector3d& p, std::size_t self, double r,
+                               const std::function<bool(std::size_t, std::size_t)>& visit) const {
   const Eigen::Vector3i c = index(p);
   const int reach = static_cast<int>(std::ceil(r / cell_));
   for (int dx = -reach; dx <= reach; ++dx)
@@ -20,9 +23,18 @@ std::vector<std::size_t> StrokePointGrid::strokes_near(const Eigen::Vector3d& p,
       for (int dz = -reach; dz <= reach; ++dz) {
         const auto it = cells_.find(cell_key(c + Eigen::Vector3i(dx, dy, dz)));
         if (it == cells_.end()) continue;
-        for (const auto& [q, s] : it->second)
-          if (s != self && (q - p).squaredNorm() <= r * r) out.push_back(s);
+        for (const Entry& e : it->second)
+          if (e.stroke != self && (e.point - p).squaredNorm() <= r * r && visit(e.stroke, e.index)) return true;
       }
+  return false;
+}
+
+std::vector<std::size_t> StrokePointGrid::strokes_near(const Eigen::Vector3d& p, std::size_t self, double r) const {
+  std::vector<std::size_t> out;
+  any_near(p, self, r, [&](std::size_t s, std::size_t) {
+    out.push_back(s);
+    return false;
+  });
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;

@@ -6,8 +6,8 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
-#include <utility>
 #include <vector>
 
 #include "surfacing/sketch/sketch.h"
@@ -23,12 +23,21 @@ class StrokePointGrid {
   /// The strokes other than `self` with a point within `r` of p, sorted, unique.
   std::vector<std::size_t> strokes_near(const Eigen::Vector3d& p, std::size_t self, double r) const;
 
+  /// Calls visit(stroke, point index) for every point of a stroke other than `self` within `r` of
+  /// p, until visit returns true; returns whether it did.
+  bool any_near(const Eigen::Vector3d& p, std::size_t self, double r,
+                const std::function<bool(std::size_t, std::size_t)>& visit) const;
+
  private:
   Eigen::Vector3i index(const Eigen::Vector3d& p) const;
   static std::uint64_t cell_key(const Eigen::Vector3i& c);
 
   double cell_;
-  std::unordered_map<std::uint64_t, std::vector<std::pair<Eigen::Vector3d, std::size_t>>> cells_;
+  struct Entry {
+    Eigen::Vector3d point;
+    std::size_t stroke, index;  // the point is strokes[stroke].points[index]
+  };
+  std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
 };
 
 }  // namespace sketchsurf
