@@ -178,6 +178,9 @@ bool SegmentOptions::valid(std::string* why) const {
   if (max_iterations < 1) return fail("segment max_iterations must be at least 1");
   if (!(min_gain >= 0.0 && min_gain < 1.0)) return fail("segment min_gain must be in [0, 1)");
   if (restarts < 1) return fail("segment restarts must be at least 1");
+  if (!non_negative(tie)) return fail("segment tie must be >= 0");
+  if (!positive(tie_distance)) return fail("segment tie_distance must be positive");
+  if (!(tie_share >= 0.0 && tie_share < 1.0)) return fail("segment tie_share must be in [0, 1)");
   if (expansion_sweeps < 1) return fail("segment expansion_sweeps must be at least 1");
   if (!non_negative(penalty_factor)) return fail("segment penalty_factor must be >= 0");
   std::string sub;
@@ -436,6 +439,31 @@ struct Segmenter::Impl {
 
   // ---- results ----
 
+  // Share of the proxy's vertices that projecting onto their region's model moves farther than
+  // `far` (normalised units; the final mesh's start: Newton steps along the gradient, each at most
+  // kStep): how much of the proxy the models would move far (a fold across a face), not the detail
+  // they correct.
+  double departure(const RunState& s, double far) const {
+    constexpr int kSteps = 5;
+    constexpr double kStep = 0.02;
+    const std::vector<int> fine = coarse.propagate(s.labels);
+    std::size_t count = 0;
+    for (std::size_t v = 0; v < fine.size(); ++v) {
+      const ImplicitModel& model = s.models[fine[v]]->model;
+      const Eigen::Vector3d start = graph.positions.row(static_cast<Eigen::Index>(v)).transpose();
+      Eigen::Vector3d x = start;
+      for (int k = 0; k < kSteps; ++k) {
+        const Eigen::Vector3d g = model.gradient(x);
+        Eigen::Vector3d dx = -(model.value(x) / g.squaredNorm()) * g;
+        if (!dx.allFinite()) break;
+        if (dx.norm() > kStep) dx *= kStep / dx.norm();
+        x += dx;
+      }
+      count += (x - start).norm() > far;
+    }
+    return fine.empty() ? 0.0 : static_cast<double>(count) / static_cast<double>(fine.size());
+  }
+
   ImplicitModel to_input_units(ImplicitModel m) const {
     m.center = origin + unit * m.center;
     m.scale = unit * m.scale;
@@ -656,8 +684,21 @@ Segmentation Segmenter::run(const Progress& progress) {
     energies[r] = results[r]->energy;
     if (energies[r] < energies[best]) best = r;
   }
+  std::vector<double> departures;
+  if (m.options.tie > 0.0) {
+    departures.resize(runs);
+    parallel_for(0, departures.size(), m.options.threads, [&](std::size_t r) {
+      departures[r] = m.departure(results[r]->state, m.options.tie_distance);
+    });
+    const double within = energies[best] * (1.0 + m.options.tie);
+    int nearest = best;
+    for (int r = 0; r < runs; ++r)
+      if (energies[r] <= within && departures[r] < departures[nearest]) nearest = r;
+    if (departures[nearest] < departures[best] - m.options.tie_share) best = nearest;
+  }
   Segmentation out = m.result(results[best]->state);
   out.summary = m.finish_summary(out.summary.energy, *results[best], runs, best, std::move(energies));
+  out.summary.restart_departures = std::move(departures);
   out.summary.segmentation_s = seconds_since(start);
   m.current = std::move(results[best]->state);
   progress.update("segmentation", 1.0);

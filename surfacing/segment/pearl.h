@@ -41,6 +41,16 @@ struct SegmentOptions {
                               ///< best of 10 within +0.16%; 0.001: 0.81-1.0x; 0.01: 0.62-0.93x
                               ///< but up to +1.3% (mean) and +2.6% (best)
   int restarts = 10;          ///< independent runs, lowest energy kept (§4.2, Fig. 7)
+  double tie = 0.01;          ///< runs whose energy is within this fraction of the lowest are
+                              ///< equally good explanations of the strokes, but can differ in
+                              ///< shape between them: a shield's back drawn by its rim and one
+                              ///< meridian is a quartic folding across the face in the lowest run
+                              ///< and a smooth cap in another 0.25% above it. Of those runs, the
+                              ///< one whose models lie farther than tie_distance from the fewest
+                              ///< proxy vertices is kept, when that share is lower by more than
+                              ///< tie_share than the lowest run's (ours; 0 = the lowest energy)
+  double tie_distance = 0.03; ///< fraction of the diagonal (the final mesh's trust distance)
+  double tie_share = 0.01;    ///< fraction of the proxy's vertices
   std::uint64_t seed = 123;   ///< base seed; restart r uses a seed derived from it and r
   unsigned threads = 0;       ///< worker threads (0 = all); results do not depend on it
   int expansion_sweeps = 1;   ///< alpha-expansion passes over the labels per PEARL step (1).
@@ -77,6 +87,9 @@ struct SegmentationSummary {
   int restarts = 0;              ///< runs made
   int best_restart = 0;          ///< index of the kept run
   std::vector<double> restart_energies;  ///< total energy (on the labelled graph) of each run
+  std::vector<double> restart_departures;  ///< with options.tie > 0: share of the proxy's
+                                           ///< vertices farther than options.tie_distance from
+                                           ///< their region's model, per run
   std::vector<double> energy_history;    ///< kept run: total energy after each step (1)
   int initial_models = 0;        ///< models proposed by the initialisation
   int graph_vertices = 0;        ///< vertices of the labelled (simplified) graph
@@ -111,7 +124,8 @@ class Segmenter {
   Segmenter& operator=(Segmenter&&) noexcept;
 
   /// Runs PEARL options.restarts times in parallel from the initial models, keeps the run of
-  /// lowest energy and returns it. Deterministic for the seed whatever the thread count.
+  /// lowest energy (or, of the runs within options.tie of it, the one whose models lie far from
+  /// the fewest proxy vertices) and returns it. Deterministic for the seed whatever the thread count.
   Segmentation run(const Progress& progress = {});
 
   /// Scribble "insert a region" (§5): fits a new model to the stroke points of `vertices` (proxy

@@ -52,6 +52,7 @@ nlohmann::json report_json(const Segmentation& s, const SegmentOptions& o) {
           {"restarts", sum.restarts},
           {"best_restart", sum.best_restart},
           {"restart_energies", sum.restart_energies},
+          {"restart_departures", sum.restart_departures},
           {"initial_models", sum.initial_models},
           {"proxy_vertices", sum.proxy_vertices},
           {"graph_vertices", sum.graph_vertices},

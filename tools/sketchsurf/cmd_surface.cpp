@@ -117,6 +117,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
       {"restarts", seg.restarts},
       {"best_restart", seg.best_restart},
       {"restart_energies", seg.restart_energies},
+      {"restart_departures", seg.restart_departures},
       {"initial_models", seg.initial_models},
       {"proxy_vertices", seg.proxy_vertices},
       {"graph_vertices", seg.graph_vertices},

@@ -113,6 +113,17 @@ TEST(Pearl, ReportsProgressWithinRunsAndCancels) {
   }
 }
 
+TEST(Pearl, WithoutATieWindowTheLowestEnergyRunIsKept) {
+  SegmentOptions o = small_options();
+  o.tie = 0.0;
+  const Segmentation s =
+      segment(testing::cylinder_sketch(), testing::rounded_cylinder_mesh(3, 0.5, 0.5, 0.04), o);
+  const auto& e = s.summary.restart_energies;
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_EQ(e[s.summary.best_restart], *std::min_element(e.begin(), e.end()));
+  EXPECT_TRUE(s.summary.restart_departures.empty());
+}
+
 TEST(Pearl, EnergyNeverIncreasesAndBestRestartIsKept) {
   const Segmentation s = segment(testing::cylinder_sketch(), testing::rounded_cylinder_mesh(3, 0.5, 0.5, 0.04),
                                  small_options());
@@ -120,8 +131,22 @@ TEST(Pearl, EnergyNeverIncreasesAndBestRestartIsKept) {
   ASSERT_FALSE(h.empty());
   EXPECT_EQ(static_cast<int>(h.size()), s.summary.iterations);
   for (std::size_t i = 1; i < h.size(); ++i) EXPECT_LE(h[i], h[i - 1] * (1 + 1e-12)) << "iteration " << i;
-  ASSERT_EQ(s.summary.restart_energies.size(), 3u);
-  for (double e : s.summary.restart_energies) EXPECT_GE(e, s.summary.restart_energies[s.summary.best_restart]);
+  // The kept run is the lowest in energy or, within `tie` of it, one that the projection moves
+  // far on fewer of the proxy's vertices by more than tie_share, the fewest of such runs.
+  const SegmentOptions o = small_options();
+  const auto& e = s.summary.restart_energies;
+  const auto& d = s.summary.restart_departures;
+  ASSERT_EQ(e.size(), 3u);
+  ASSERT_EQ(d.size(), 3u);
+  const int best = s.summary.best_restart;
+  const auto lowest = static_cast<std::size_t>(std::min_element(e.begin(), e.end()) - e.begin());
+  EXPECT_LE(e[best], e[lowest] * (1.0 + o.tie));
+  if (static_cast<std::size_t>(best) != lowest) EXPECT_LT(d[best], d[lowest] - o.tie_share);
+  for (std::size_t r = 0; r < e.size(); ++r) {
+    EXPECT_GE(d[r], 0.0);
+    EXPECT_LE(d[r], 1.0);
+    if (e[r] <= e[lowest] * (1.0 + o.tie)) EXPECT_GE(d[r], d[best] - (best == static_cast<int>(lowest) ? o.tie_share : 0.0)) << "run " << r;
+  }
   EXPECT_TRUE(s.summary.converged);
   EXPECT_GT(s.summary.initial_models, 20);
   EXPECT_LT(s.summary.graph_vertices, s.summary.proxy_vertices);
