@@ -46,9 +46,10 @@ struct SegmentOptions {
                               ///< shape between them: a shield's back drawn by its rim and one
                               ///< meridian is a quartic folding across the face in the lowest run
                               ///< and a smooth cap in another 0.25% above it. Of those runs, the
-                              ///< one whose models lie farther than tie_distance from the fewest
-                              ///< proxy vertices is kept, when that share is lower by more than
-                              ///< tie_share than the lowest run's (ours; 0 = the lowest energy)
+                              ///< one whose models would move the fewest proxy vertices farther
+                              ///< than tie_distance (projected as the final mesh starts) is kept,
+                              ///< when that share is lower by more than tie_share than the lowest
+                              ///< run's (ours; 0 = the lowest energy only)
   double tie_distance = 0.03; ///< fraction of the diagonal (the final mesh's trust distance)
   double tie_share = 0.01;    ///< fraction of the proxy's vertices
   std::uint64_t seed = 123;   ///< base seed; restart r uses a seed derived from it and r
@@ -87,9 +88,9 @@ struct SegmentationSummary {
   int restarts = 0;              ///< runs made
   int best_restart = 0;          ///< index of the kept run
   std::vector<double> restart_energies;  ///< total energy (on the labelled graph) of each run
-  std::vector<double> restart_departures;  ///< with options.tie > 0: share of the proxy's
-                                           ///< vertices farther than options.tie_distance from
-                                           ///< their region's model, per run
+  std::vector<double> restart_departures;  ///< with options.tie > 0, per run: share of the
+                                           ///< proxy's vertices that projecting onto their
+                                           ///< region's model moves farther than tie_distance
   std::vector<double> energy_history;    ///< kept run: total energy after each step (1)
   int initial_models = 0;        ///< models proposed by the initialisation
   int graph_vertices = 0;        ///< vertices of the labelled (simplified) graph
@@ -124,8 +125,9 @@ class Segmenter {
   Segmenter& operator=(Segmenter&&) noexcept;
 
   /// Runs PEARL options.restarts times in parallel from the initial models, keeps the run of
-  /// lowest energy (or, of the runs within options.tie of it, the one whose models lie far from
-  /// the fewest proxy vertices) and returns it. Deterministic for the seed whatever the thread count.
+  /// lowest energy (or, of the runs within options.tie of it, the one whose models would move the
+  /// fewest proxy vertices far) and returns it. Deterministic for the seed whatever the thread
+  /// count.
   Segmentation run(const Progress& progress = {});
 
   /// Scribble "insert a region" (§5): fits a new model to the stroke points of `vertices` (proxy

@@ -142,10 +142,11 @@ TEST(Pearl, EnergyNeverIncreasesAndBestRestartIsKept) {
   const auto lowest = static_cast<std::size_t>(std::min_element(e.begin(), e.end()) - e.begin());
   EXPECT_LE(e[best], e[lowest] * (1.0 + o.tie));
   if (static_cast<std::size_t>(best) != lowest) EXPECT_LT(d[best], d[lowest] - o.tie_share);
+  const double fewest = static_cast<std::size_t>(best) == lowest ? d[best] - o.tie_share : d[best];
   for (std::size_t r = 0; r < e.size(); ++r) {
     EXPECT_GE(d[r], 0.0);
     EXPECT_LE(d[r], 1.0);
-    if (e[r] <= e[lowest] * (1.0 + o.tie)) EXPECT_GE(d[r], d[best] - (best == static_cast<int>(lowest) ? o.tie_share : 0.0)) << "run " << r;
+    if (e[r] <= e[lowest] * (1.0 + o.tie)) EXPECT_GE(d[r], fewest) << "run " << r;
   }
   EXPECT_TRUE(s.summary.converged);
   EXPECT_GT(s.summary.initial_models, 20);
