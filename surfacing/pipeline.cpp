@@ -113,6 +113,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.confine_near", setter([](Params& p) -> auto& { return p.proxy.confine_near; })},
       {"proxy.near_open_least", setter([](Params& p) -> auto& { return p.proxy.near_open_least; })},
       {"proxy.near_open_ratio", setter([](Params& p) -> auto& { return p.proxy.near_open_ratio; })},
+      {"proxy.framed_gap", setter([](Params& p) -> auto& { return p.proxy.framed_gap; })},
       {"proxy.confine_box", setter([](Params& p) -> auto& { return p.proxy.confine_box; })},
       {"proxy.outline_gap", setter([](Params& p) -> auto& { return p.proxy.outline_gap; })},
       {"proxy.outline_reach", setter([](Params& p) -> auto& { return p.proxy.outline_reach; })},

@@ -484,15 +484,16 @@ double far_fraction(const TriangleArrays& mesh, const PointGrid& strokes, double
 // How the surface farther than `radius` from every stroke (`strokes`, the stroke points) is held
 // by the strokes around it, as fractions of the surface's area: `framed` where, seen in a face's
 // tangent plane, the strokes within twice its distance (and within 30 degrees of that plane)
-// surround it with no gap of half a turn or more (a face between its drawn edges), `open` where
-// they leave such a gap or none is near (a web beside a single pole, a fin past the last stroke).
-// The directions are those of `points` (over `grid`), the strokes sampled coarsely: a gap of half
-// a turn needs no finer angles, and the faces farther than `radius` may see most of the sketch.
+// surround it with no gap of `gap` radians or more (a face between its drawn edges), `open` where
+// they leave such a gap or none is near (a web beside a single pole, a fin past the last stroke, a
+// wall between two legs). The directions are those of `points` (over `grid`), the strokes sampled
+// coarsely: a gap of a third of a turn needs no finer angles, and the faces farther than `radius`
+// may see most of the sketch.
 struct Framing {
   double framed = 0.0, open = 0.0;
 };
 Framing surface_framing(const TriangleArrays& mesh, const PointGrid& strokes, const Eigen::MatrixX3d& points,
-                        const PointGrid& grid, double radius, unsigned threads) {
+                        const PointGrid& grid, double radius, double gap, unsigned threads) {
   constexpr double kCone = 0.5;  // sine of the largest angle between a stroke's direction and the plane
   const auto faces = static_cast<std::size_t>(mesh.F.rows());
   std::vector<double> framed(faces, 0.0), open(faces, 0.0), area(faces, 0.0);
@@ -514,13 +515,13 @@ Framing surface_framing(const TriangleArrays& mesh, const PointGrid& strokes, co
       const Eigen::Vector3d e = points.row(i).transpose() - x;
       if (std::abs(n.dot(e)) <= kCone * e.norm()) angles.push_back(portable::atan2(v.dot(e), u.dot(e)));
     });
-    double gap = 2.0 * M_PI;
+    double widest = 2.0 * M_PI;
     if (!angles.empty()) {
       std::sort(angles.begin(), angles.end());
-      gap = angles.front() + 2.0 * M_PI - angles.back();
-      for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+      widest = angles.front() + 2.0 * M_PI - angles.back();
+      for (std::size_t i = 1; i < angles.size(); ++i) widest = std::max(widest, angles[i] - angles[i - 1]);
     }
-    (gap < M_PI ? framed : open)[k] = area[k];
+    (widest < gap ? framed : open)[k] = area[k];
   });
   Framing out;
   double total = 0.0;
@@ -595,6 +596,7 @@ bool ProxyOptions::valid(std::string* why) const {
     return fail("proxy confine_radius must be in [0, 1)");
   if (!(confine_near >= 0.0 && confine_near < 1.0)) return fail("proxy confine_near must be in [0, 1)");
   if (!(near_open_ratio >= 0.0)) return fail("proxy near_open_ratio must be >= 0");
+  if (!(framed_gap > 0.0 && framed_gap <= 360.0)) return fail("proxy framed_gap must be in (0, 360]");
   if (!(near_open_least >= 0.0 && near_open_least <= 1.0))
     return fail("proxy near_open_least must be in [0, 1]");
   if (!(confine_box >= 0.0 && confine_box < 1.0)) return fail("proxy confine_box must be in [0, 1)");
@@ -889,7 +891,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     const auto t = Clock::now();
     const Eigen::MatrixX3d coarse = stroke_targets(unit, 6.0 * options.cell);
     const Framing framing =
-        surface_framing(kept.mesh, stroke_grid, coarse, PointGrid(coarse), options.confine_near, threads);
+        surface_framing(kept.mesh, stroke_grid, coarse, PointGrid(coarse), options.confine_near,
+                        options.framed_gap * M_PI / 180.0, threads);
     if (framing.open >= options.near_open_least && framing.open >= options.near_open_ratio * framing.framed) {
       auto near = std::make_unique<ConfinedField>(*kept.field);
       near->set_radius(options.confine_near);

@@ -49,14 +49,20 @@ struct ProxyOptions {
   double confine_near = 0.1;    ///< a nearer radius (fraction of diagonal; 0 = off), used when
                                  ///< the surface farther than this from every stroke is mostly
                                  ///< not framed by strokes: seen in its tangent plane, the strokes
-                                 ///< near it leave a gap of half a turn (a lamp's pole webbed to
+                                 ///< near it leave a gap of framed_gap (a lamp's pole webbed to
                                  ///< its base and shade). Faces framed by strokes far apart would
                                  ///< be pitted by it, hence tried only when ...
   double near_open_least = 0.01;  ///< ... at least this fraction of the surface is farther and
                                   ///< not framed, and
-  double near_open_ratio = 5.0;   ///< ... this many times the fraction farther and framed (a
-                                  ///< chest's lid: 3.7, pitted; a lamp's web: 6.3); kept when it
-                                  ///< adds no handle and splits nothing
+  double near_open_ratio = 10.0;  ///< ... this many times the fraction farther and framed (a
+                                  ///< chest's lid: 4.9, pitted; a bar's bulging ends: 6.3, pitted
+                                  ///< at its corners; a chair's legs webbed into a skirt: 14.6; a
+                                  ///< lamp's web: 152); kept when it adds no handle and splits
+                                  ///< nothing
+  double framed_gap = 120.0;      ///< a face is framed when the strokes round it, seen in its
+                                  ///< tangent plane, leave no gap of this many degrees or more
+                                  ///< (a face between its drawn edges); a wall between two legs,
+                                  ///< open below them, leaves 120-180 degrees
   double confine_box = 0.02;    ///< with confine_radius > 0, no surface farther than this outside
                                 ///< the strokes' bounding box either (fraction of diagonal): the
                                 ///< offset surface that closes a cut would reach confine_radius
