@@ -250,8 +250,8 @@ TEST(Surface, ASmoothTorusIsAtLeastAsAccurateAsItsProxy) {
 
 // A chair drawn mid-air (vr draw 3): VIPSS webs each side's front and back legs into a wall that
 // hangs from the seat, framed by the legs and the seat but open below them. The proxy is cut back
-// nearer the strokes there; with the wider confinement alone the final surface keeps the wall
-// (p95 6.4% of the diagonal off the truth, 2.8% with the cut).
+// nearer the strokes there; with the wider confinement alone the final surface keeps the wall and
+// fails both bounds.
 TEST(Surface, AChairDrawnInVrHasNoWallBetweenItsLegs) {
   const TriMesh truth = testing::truth_shape("chair").mesh;
   SynthOptions vr;
