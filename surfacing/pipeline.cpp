@@ -145,6 +145,8 @@ const std::map<std::string, Setter>& parameter_table() {
       {"segment.tie", setter([](Params& p) -> auto& { return p.segment.tie; })},
       {"segment.tie_distance", setter([](Params& p) -> auto& { return p.segment.tie_distance; })},
       {"segment.tie_share", setter([](Params& p) -> auto& { return p.segment.tie_share; })},
+      {"segment.fold", setter([](Params& p) -> auto& { return p.segment.fold; })},
+      {"segment.fold_share", setter([](Params& p) -> auto& { return p.segment.fold_share; })},
       {"segment.seed", setter([](Params& p) -> auto& { return p.segment.seed; })},
       {"segment.simplify", setter([](Params& p) -> auto& { return p.segment.simplify; })},
       {"segment.crease_guides", setter([](Params& p) -> auto& { return p.segment.association.guides.enabled; })},

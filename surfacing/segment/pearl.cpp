@@ -181,6 +181,8 @@ bool SegmentOptions::valid(std::string* why) const {
   if (!non_negative(tie)) return fail("segment tie must be >= 0");
   if (!positive(tie_distance)) return fail("segment tie_distance must be positive");
   if (!(tie_share >= 0.0 && tie_share < 1.0)) return fail("segment tie_share must be in [0, 1)");
+  if (!non_negative(fold)) return fail("segment fold must be >= 0");
+  if (!(fold_share >= 0.0 && fold_share < 1.0)) return fail("segment fold_share must be in [0, 1)");
   if (expansion_sweeps < 1) return fail("segment expansion_sweeps must be at least 1");
   if (!non_negative(penalty_factor)) return fail("segment penalty_factor must be >= 0");
   std::string sub;
@@ -685,16 +687,23 @@ Segmentation Segmenter::run(const Progress& progress) {
     if (energies[r] < energies[best]) best = r;
   }
   std::vector<double> departures;
-  if (m.options.tie > 0.0) {
+  if (m.options.tie > 0.0 || m.options.fold > 0.0) {
     departures.resize(runs);
     parallel_for(0, departures.size(), m.options.threads, [&](std::size_t r) {
       departures[r] = m.departure(results[r]->state, m.options.tie_distance);
     });
-    const double within = energies[best] * (1.0 + m.options.tie);
-    int nearest = best;
-    for (int r = 0; r < runs; ++r)
-      if (energies[r] <= within && departures[r] < departures[nearest]) nearest = r;
-    if (departures[nearest] < departures[best] - m.options.tie_share) best = nearest;
+    const double lowest = energies[best];
+    // Of the runs within `window` of the lowest energy, the one with the fewest far vertices
+    // replaces the kept run when it has fewer by more than `share`.
+    const auto prefer_fewest_far = [&](double window, double share) {
+      if (window <= 0.0) return;
+      int fewest = best;
+      for (int r = 0; r < runs; ++r)
+        if (energies[r] <= lowest * (1.0 + window) && departures[r] < departures[fewest]) fewest = r;
+      if (departures[fewest] < departures[best] - share) best = fewest;
+    };
+    prefer_fewest_far(m.options.tie, m.options.tie_share);
+    prefer_fewest_far(m.options.fold, m.options.fold_share);
   }
   Segmentation out = m.result(results[best]->state);
   out.summary = m.finish_summary(out.summary.energy, *results[best], runs, best, std::move(energies));

@@ -21,7 +21,8 @@ namespace sketchsurf {
 /// sketch's bounding-box diagonal: the work happens in coordinates where that diagonal is 1.
 struct SegmentOptions {
   double epsilon = 0.01;      ///< eps of E_fidelity, fraction of the diagonal (Eq. 2)
-  double w_smooth = 10.0;     ///< weight of E_smoothness (Eq. 1, 3)
+  double w_smooth = 5.0;      ///< weight of E_smoothness (Eq. 1, 3; the paper has 10, which keeps
+                              ///< curved models wrapped round thin faces drawn only by their rims)
   double w_simp = 0.01;       ///< weight of E_simplicity (Eq. 1, 4)
   double mu = 0.1;            ///< proxy-normal alignment weight of the fit (Eq. 6)
   double lambda = 1.0;        ///< L2 regularisation of the fit (Eq. 6, App. B)
@@ -52,6 +53,12 @@ struct SegmentOptions {
                               ///< run's (ours; 0 = the lowest energy only)
   double tie_distance = 0.03; ///< fraction of the diagonal (the final mesh's trust distance)
   double tie_share = 0.01;    ///< fraction of the proxy's vertices
+  double fold = 0.1;          ///< a wider window for a fold: of the runs within this fraction of
+                              ///< the lowest energy, the one with the fewest far vertices is kept
+                              ///< when the run the tie rule kept has more by over fold_share. A
+                              ///< model folding across a face moves a third of the proxy far, in a
+                              ///< run a few percent below a smooth one (ours; 0 = off)
+  double fold_share = 0.15;   ///< fraction of the proxy's vertices
   std::uint64_t seed = 123;   ///< base seed; restart r uses a seed derived from it and r
   unsigned threads = 0;       ///< worker threads (0 = all); results do not depend on it
   int expansion_sweeps = 1;   ///< alpha-expansion passes over the labels per PEARL step (1).

@@ -143,7 +143,9 @@ TEST(Segment, CubeGivesSixPlanesBoundedByItsEdges) {
   }
   // Energies are reported and consistent.
   const SegmentEnergy& E = s.summary.energy;
-  EXPECT_NEAR(E.total, E.fidelity + 10.0 * E.smoothness + 0.01 * E.simplicity, 1e-12);
+  const SegmentOptions defaults;
+  EXPECT_NEAR(E.total, E.fidelity + defaults.w_smooth * E.smoothness + defaults.w_simp * E.simplicity,
+              1e-12);
   EXPECT_NEAR(E.simplicity, 6 * 4 / 35.0, 1e-12);
 }
 

@@ -118,16 +118,20 @@ TEST(DecorationData, ATorchsHangingRingIsLeftOutAndItsHandleKept) {
 
 TEST(TieData, AShieldsBackDrawnByItsRimAndOneMeridianIsNotFolded) {
   // cassie/shield: the back is drawn by the rim and one meridian only. Of the ten PEARL runs, the
-  // lowest in energy fits it with a quartic that folds across the face through the front (5,786
-  // crossing triangle pairs; projecting the proxy onto the models moves 44% of its vertices
-  // farther than 3% of the diagonal); another within 0.25% of that energy moves 1.1% and makes it
-  // a smooth cap (204 pairs). Of near-equal runs, the one that moves the proxy least far is kept.
+  // lowest in energy fits it with a quartic that folds across the face through the front (913
+  // crossing triangle pairs, the front crumpled; projecting the proxy onto the models moves 33% of
+  // its vertices farther than 3% of the diagonal); another, 9.5% above that energy, moves 2.9% and
+  // makes it a smooth cap (262 pairs). Of the runs within the fold window, the one that moves the
+  // proxy least far is kept when the kept run moves far more.
   const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "cassie" / "shield.curves");
   const SurfaceResult r = Surfacer().run(sketch);
-  EXPECT_LT(r.report.checks.self_intersections, 2500u);
-  const auto& e = r.segmentation.summary.restart_energies;
+  EXPECT_LT(r.report.checks.self_intersections, 600u);
+  const auto& summary = r.segmentation.summary;
+  const auto& e = summary.restart_energies;
   const double lowest = *std::min_element(e.begin(), e.end());
-  EXPECT_LE(e[r.segmentation.summary.best_restart], (1.0 + Params().segment.tie) * lowest);
+  EXPECT_LE(e[summary.best_restart], (1.0 + Params().segment.fold) * lowest);
+  ASSERT_EQ(summary.restart_departures.size(), e.size());
+  EXPECT_LT(summary.restart_departures[summary.best_restart], 0.1);
 }
 
 TEST(SectionData, ADressDrawnAsSectionsIsALoftedTube) {
