@@ -248,17 +248,22 @@ TEST(Surface, ASmoothTorusIsAtLeastAsAccurateAsItsProxy) {
   EXPECT_EQ(mesh_topology(r.mesh).genus, 1);
 }
 
+// The final surface of a ground-truth shape drawn mid-air (synth's vr style, draw `seed`),
+// measured against the shape.
+Evaluation surfaced_vr_draw(const std::string& shape, unsigned seed) {
+  const TriMesh truth = testing::truth_shape(shape).mesh;
+  SynthOptions vr;
+  vr.style = SynthOptions::Style::Vr;
+  vr.seed = seed;
+  return evaluate(surface(synthesize_sketch(truth, vr)).mesh, truth);
+}
+
 // A chair drawn mid-air (vr draw 3): VIPSS webs each side's front and back legs into a wall that
 // hangs from the seat, framed by the legs and the seat but open below them. The proxy is cut back
 // nearer the strokes there; with the wider confinement alone the final surface keeps the wall and
 // fails both bounds.
 TEST(Surface, AChairDrawnInVrHasNoWallBetweenItsLegs) {
-  const TriMesh truth = testing::truth_shape("chair").mesh;
-  SynthOptions vr;
-  vr.style = SynthOptions::Style::Vr;
-  vr.seed = 3;
-  const SurfaceResult r = surface(synthesize_sketch(truth, vr));
-  const Evaluation eval = evaluate(r.mesh, truth);
+  const Evaluation eval = surfaced_vr_draw("chair", 3);
   EXPECT_LT(eval.accuracy.p95, 0.04);
   EXPECT_LT(eval.accuracy.max, 0.10);
 }
@@ -268,12 +273,7 @@ TEST(Surface, AChairDrawnInVrHasNoWallBetweenItsLegs) {
 // follow the proxy's bulge (p99 above 3.6% of the diagonal); with the weaker default, the planes'
 // borders follow the rims and the ends come out flat.
 TEST(Surface, AnLBracketDrawnInVrHasFlatThinEndFaces) {
-  const TriMesh truth = testing::truth_shape("l_bracket").mesh;
-  SynthOptions vr;
-  vr.style = SynthOptions::Style::Vr;
-  vr.seed = 1;
-  const SurfaceResult r = surface(synthesize_sketch(truth, vr));
-  const Evaluation eval = evaluate(r.mesh, truth);
+  const Evaluation eval = surfaced_vr_draw("l_bracket", 1);
   EXPECT_LT(eval.accuracy.p99, 0.02);
   EXPECT_LT(eval.accuracy.max, 0.05);
 }
