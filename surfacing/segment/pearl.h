@@ -46,7 +46,7 @@ struct SegmentOptions {
                               ///< equally good explanations of the strokes, but can differ in
                               ///< shape between them: a shield's back drawn by its rim and one
                               ///< meridian is a quartic folding across the face in the lowest run
-                              ///< and a smooth cap in another 0.25% above it. Of those runs, the
+                              ///< and a smooth cap in another just above it. Of those runs, the
                               ///< one whose models would move the fewest proxy vertices farther
                               ///< than tie_distance (projected as the final mesh starts) is kept,
                               ///< when that share is lower by more than tie_share than the lowest
