@@ -269,9 +269,9 @@ TEST(Surface, AChairDrawnInVrHasNoWallBetweenItsLegs) {
 }
 
 // An L-bracket drawn mid-air (vr draw 1): its thin end faces are drawn by their rims only and the
-// proxy rounds them. With the paper's smoothness weight (10) curved models wrap those corners and
-// follow the proxy's bulge (p99 above 3.6% of the diagonal); with the weaker default, the planes'
-// borders follow the rims and the ends come out flat.
+// proxy rounds them. With the paper's smoothness weight (10) curved models wrap those corners,
+// follow the proxy's bulge and fail both bounds; with the weaker default, the planes' borders
+// follow the rims and the ends come out flat.
 TEST(Surface, AnLBracketDrawnInVrHasFlatThinEndFaces) {
   const Evaluation eval = surfaced_vr_draw("l_bracket", 1);
   EXPECT_LT(eval.accuracy.p99, 0.02);
