@@ -697,9 +697,10 @@ Segmentation Segmenter::run(const Progress& progress) {
     // replaces the kept run when it has fewer by more than `share`.
     const auto prefer_fewest_far = [&](double window, double share) {
       if (window <= 0.0) return;
+      const double within = lowest * (1.0 + window);
       int fewest = best;
       for (int r = 0; r < runs; ++r)
-        if (energies[r] <= lowest * (1.0 + window) && departures[r] < departures[fewest]) fewest = r;
+        if (energies[r] <= within && departures[r] < departures[fewest]) fewest = r;
       if (departures[fewest] < departures[best] - share) best = fewest;
     };
     prefer_fewest_far(m.options.tie, m.options.tie_share);

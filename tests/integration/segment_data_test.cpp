@@ -86,7 +86,8 @@ TEST_P(SegmentData, FinishesWithMonotoneEnergy) {
   EXPECT_EQ(std::set<int>(s.labels.begin(), s.labels.end()).size(), s.models.size());
   const SegmentEnergy& E = s.summary.energy;
   EXPECT_TRUE(std::isfinite(E.total));
-  EXPECT_NEAR(E.total, E.fidelity + options.w_smooth * E.smoothness + options.w_simp * E.simplicity, 1e-9);
+  EXPECT_NEAR(E.total,
+              E.fidelity + options.w_smooth * E.smoothness + options.w_simp * E.simplicity, 1e-9);
   for (const auto& m : s.models) {
     EXPECT_TRUE(m.coefficients.allFinite());
     EXPECT_GE(m.degree, 1);

@@ -144,7 +144,8 @@ TEST(Segment, CubeGivesSixPlanesBoundedByItsEdges) {
   // Energies are reported and consistent.
   const SegmentEnergy& E = s.summary.energy;
   const SegmentOptions defaults;
-  EXPECT_NEAR(E.total, E.fidelity + defaults.w_smooth * E.smoothness + defaults.w_simp * E.simplicity,
+  EXPECT_NEAR(E.total,
+              E.fidelity + defaults.w_smooth * E.smoothness + defaults.w_simp * E.simplicity,
               1e-12);
   EXPECT_NEAR(E.simplicity, 6 * 4 / 35.0, 1e-12);
 }
