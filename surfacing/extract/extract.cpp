@@ -12,7 +12,7 @@ namespace sketchsurf {
 
 bool ExtractOptions::valid(std::string* why) const {
   if (!seams.valid(why) || !energy.valid(why) || !trim.valid(why) || !smooth_fallback.valid(why) ||
-      !back_sides.valid(why))
+      !back_sides.valid(why) || !outline.valid(why))
     return false;
   if (!(plane_tolerance > 0.0)) {
     if (why) *why = "extract.plane_tolerance must be > 0";
@@ -164,6 +164,8 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
       if (on_plane[v]) constraints.plane_vertices.push_back(static_cast<int>(v));
   }
   constraints.strokes = stroke_segments(sketch, false);
+  constraints.outlines = plane_outlines(seamed, models, *constraints.strokes, diagonal, options.outline);
+  constraints.outline_margin = options.outline.margin * diagonal;
   if (open) constraints.attract = boundary_targets(seamed.mesh, sketch, on_plane, diagonal, options.trim);
   summary.attracted_vertices = constraints.attract.size();
   // Regions whose model cannot follow their strokes stay at the proxy (smooth_fallback.h).

@@ -9,6 +9,7 @@
 
 #include "surfacing/extract/back_sides.h"
 #include "surfacing/extract/mirror.h"
+#include "surfacing/extract/outline.h"
 #include "surfacing/extract/optimize.h"
 #include "surfacing/extract/seams.h"
 #include "surfacing/extract/smooth_fallback.h"
@@ -27,6 +28,7 @@ struct ExtractOptions {
   TrimOptions trim;          ///< open surfaces (App. D)
   SmoothFallbackOptions smooth_fallback;  ///< the proxy where the models cannot follow the strokes
   BackSideOptions back_sides;  ///< thin parts' two sides kept apart (back_sides.h)
+  OutlineOptions outline;      ///< flat regions end at their drawn outline (outline.h)
   double plane_tolerance = 1e-6;  ///< boundary vertices this close to the mirror plane lie on it
                                   ///< (fraction of the diagonal)
   bool valid(std::string* why) const;

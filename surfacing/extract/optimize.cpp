@@ -174,7 +174,10 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   // strokes) is not what the strokes depict. So do vertices that would leave the strokes' grown
   // box from inside it (box_margin). Tested after the first projection, and once more
   // after the solve (the solve can carry vertices there step by step); a vertex held then makes
-  // a second solve from the proxy.
+  // a second solve from the proxy. A vertex that the solve leaves past its flat region's drawn
+  // outline is held on the outline, the rim it spread past (outline.h); tested after the solve
+  // only: after the first projection, vertices beside a box's edges lie past their face's
+  // outline for a while and the solve brings them back.
   MeshConstraints trusted = constraints;
   std::optional<ClosestFaceTree> tree;
   if (options.trust_distance > 0.0 && constraints.strokes && constraints.strokes->segments.rows() > 0)
@@ -189,28 +192,54 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   };
   std::vector<char> held(static_cast<std::size_t>(n), 0);
   for (int v : constraints.held) held[static_cast<std::size_t>(v)] = 1;
-  const auto hold_far = [&](const std::vector<double>& at) {
-    if (!tree && !(options.box_margin > 0.0 && constraints.strokes)) return false;
+  std::size_t outlined = 0;
+  // Where each held vertex is held: the proxy, or its point of an outline.
+  std::vector<Eigen::Vector3d> held_at(static_cast<std::size_t>(n));
+  for (int v = 0; v < n; ++v) held_at[static_cast<std::size_t>(v)] = Eigen::Vector3d(proxy[3 * v], proxy[3 * v + 1], proxy[3 * v + 2]);
+  const auto place_held = [&] {
+    for (int v : trusted.held) mesh.set_point(TriMesh::VertexHandle(v), to_openmesh(held_at[static_cast<std::size_t>(v)]));
+  };
+  const bool any_outline = std::any_of(constraints.outlines.begin(), constraints.outlines.end(),
+                                       [](const auto& o) { return o.has_value(); });
+  const auto hold_far = [&](const std::vector<double>& at, bool solved) {
+    if (!tree && !(options.box_margin > 0.0 && constraints.strokes) && !(solved && any_outline)) return false;
     const auto to_strokes = [&](const double* p) {
       const Eigen::Vector3d point(p[0], p[1], p[2]);
       Eigen::Vector3d q;
       return !tree || tree->closest_face(point, &q) < 0 ? 0.0 : (q - point).norm();
     };
+    // 1: held at the proxy; 2: held on an outline; at target[i].
     std::vector<char> far(static_cast<std::size_t>(n), 0);
+    std::vector<Eigen::Vector3d> target(static_cast<std::size_t>(n));
     parallel_for(0, static_cast<std::size_t>(n), threads, [&](std::size_t i) {
+      if (held[i]) return;
       const double* from = &proxy[3 * i];
-      const double* to = &at[3 * i];
-      const double moved =
-          (Eigen::Vector3d(to[0], to[1], to[2]) - Eigen::Vector3d(from[0], from[1], from[2])).norm();
-      far[i] = !held[i] && ((tree && moved > reach && to_strokes(to) > to_strokes(from) + reach) ||
-                            (outside_box(to) && !outside_box(from)));
+      const Eigen::Vector3d to(at[3 * i], at[3 * i + 1], at[3 * i + 2]);
+      const double moved = (to - Eigen::Vector3d(from[0], from[1], from[2])).norm();
+      if ((tree && moved > reach && to_strokes(to.data()) > to_strokes(from) + reach) ||
+          (outside_box(to.data()) && !outside_box(from))) {
+        far[i] = 1;
+        target[i] = Eigen::Vector3d(from[0], from[1], from[2]);
+        return;
+      }
+      if (!solved) return;
+      for (int label : lm.labels[i]) {
+        if (static_cast<std::size_t>(label) >= constraints.outlines.size() || !constraints.outlines[label]) continue;
+        if (const auto q = constraints.outlines[label]->pull_back(to, models[label].gradient(to), constraints.outline_margin)) {
+          far[i] = 2;
+          target[i] = *q;
+          return;
+        }
+      }
     });
     bool any = false;
     for (int v = 0; v < n; ++v) {
       if (!far[static_cast<std::size_t>(v)]) continue;
       held[static_cast<std::size_t>(v)] = 1;
       trusted.held.push_back(v);
-      trusted.attract.push_back({v, Eigen::Vector3d(proxy[3 * v], proxy[3 * v + 1], proxy[3 * v + 2])});
+      trusted.attract.push_back({v, target[static_cast<std::size_t>(v)]});
+      held_at[static_cast<std::size_t>(v)] = target[static_cast<std::size_t>(v)];
+      outlined += far[static_cast<std::size_t>(v)] == 2;
       any = true;
     }
     return any;
@@ -219,12 +248,14 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
     x = proxy;
     for (auto v : mesh.vertices())
       mesh.set_point(v, TriMesh::Point(proxy[3 * v.idx()], proxy[3 * v.idx() + 1], proxy[3 * v.idx() + 2]));
+    place_held();
+    load();
     if (options.projection_steps > 0) {
       project_vertices(lm, models, options.projection_steps, options.max_projection_step * size, threads, held,
                        inside_offsets(constraints, n));
       load();
-      if (pass == 0 && hold_far(x)) {
-        for (int v : trusted.held) mesh.set_point(TriMesh::VertexHandle(v), TriMesh::Point(&proxy[3 * v]));
+      if (pass == 0 && hold_far(x, false)) {
+        place_held();
         load();
       }
     }
@@ -240,9 +271,10 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
     }
     const detail::MeshEnergyFunction function(energy, n, team);
     minimize(energy, function, team, x, size, summary);
-    if (pass == 1 || !hold_far(x)) break;
+    if (pass == 1 || !hold_far(x, true)) break;
   }
-  summary.held_vertices = trusted.held.size() - constraints.held.size();
+  summary.outline_vertices = outlined;
+  summary.held_vertices = trusted.held.size() - constraints.held.size() - outlined;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (double value : x)

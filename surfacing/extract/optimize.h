@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "surfacing/extract/outline.h"
 #include "surfacing/extract/seams.h"
 #include "surfacing/progress.h"
 #include "surfacing/segment/implicit.h"
@@ -92,6 +93,12 @@ struct MeshConstraints {
                                        ///< the zero set: a thin part's far side (back_sides.h)
   double inside_gap = 0.0;             ///< mesh units
   std::optional<StrokeSegments> strokes;  ///< the strokes, for trust_distance (none: no limit)
+  std::vector<std::optional<PlaneOutline>> outlines;  ///< per model, or empty: a flat region's
+                                                      ///< drawn outline (outline.h); a vertex that
+                                                      ///< the solve leaves farther than
+                                                      ///< outline_margin outside it is held at its
+                                                      ///< closest point of the outline instead
+  double outline_margin = 0.0;         ///< mesh units
 };
 
 /// Moves each vertex onto the intersection of its labels' surfaces by damped Gauss-Newton steps
@@ -123,6 +130,7 @@ struct OptimizeSummary {
   int iterations = 0;
   int local_global_iterations = 0;  ///< iterations of the local-global start made
   std::size_t held_vertices = 0;    ///< vertices kept with the proxy (trust_distance)
+  std::size_t outline_vertices = 0; ///< vertices held on a flat region's drawn outline
   std::string termination;  ///< termination type and message (in Ceres' words: CONVERGENCE, ...)
   std::string solver;       ///< minimizer and linear solver used
   bool usable = false;      ///< the solver reports a usable solution

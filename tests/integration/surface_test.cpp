@@ -289,6 +289,16 @@ TEST(Surface, AnLBracketDrawnInVrHasFlatThinEndFaces) {
   EXPECT_LT(eval.accuracy.max, 0.05);
 }
 
+// A wineglass drawn mid-air (vr draw 3): the foot's underside is flat, and the proxy's bulge past
+// the foot's rim would be projected onto its plane as a flange round the foot. Flat regions end
+// at their drawn outline.
+TEST(Surface, AWineglassDrawnInVrHasNoFlangeRoundItsFoot) {
+  const TriMesh truth = testing::truth_shape("wineglass").mesh;
+  const Evaluation eval = evaluate(surfaced_vr_draw(truth, 3).mesh, truth);
+  EXPECT_LT(eval.accuracy.p99, 0.02);
+  EXPECT_LT(eval.accuracy.max, 0.05);
+}
+
 TEST(Surface, CylinderWithCapsHasSharpRimsAndARoundSide) {
   const double radius = 0.5, half_height = 0.5;
   const TriMesh proxy = testing::rounded_cylinder_mesh(4, radius, half_height, 0.08);

@@ -146,6 +146,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                       {"seam_vertices", ex.seam_vertices},
                       {"corner_vertices", ex.corner_vertices},
                       {"held_vertices", ex.optimization.held_vertices},
+                      {"outline_vertices", ex.optimization.outline_vertices},
                       {"regions_at_proxy", ex.smooth_fallback.kept},
                       {"smooth_parts", ex.smooth_fallback.parts},
                       {"smooth_parts_at_proxy", ex.smooth_fallback.reverted},
