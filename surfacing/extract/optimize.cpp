@@ -195,9 +195,11 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   std::size_t outlined = 0;
   // Where each held vertex is held: the proxy, or its point of an outline.
   std::vector<Eigen::Vector3d> held_at(static_cast<std::size_t>(n));
-  for (int v = 0; v < n; ++v) held_at[static_cast<std::size_t>(v)] = Eigen::Vector3d(proxy[3 * v], proxy[3 * v + 1], proxy[3 * v + 2]);
+  for (int v = 0; v < n; ++v)
+    held_at[static_cast<std::size_t>(v)] = Eigen::Vector3d(proxy[3 * v], proxy[3 * v + 1], proxy[3 * v + 2]);
   const auto place_held = [&] {
-    for (int v : trusted.held) mesh.set_point(TriMesh::VertexHandle(v), to_openmesh(held_at[static_cast<std::size_t>(v)]));
+    for (int v : trusted.held)
+      mesh.set_point(TriMesh::VertexHandle(v), to_openmesh(held_at[static_cast<std::size_t>(v)]));
   };
   const bool any_outline = std::any_of(constraints.outlines.begin(), constraints.outlines.end(),
                                        [](const auto& o) { return o.has_value(); });
@@ -225,7 +227,8 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
       if (!solved) return;
       for (int label : lm.labels[i]) {
         if (static_cast<std::size_t>(label) >= constraints.outlines.size() || !constraints.outlines[label]) continue;
-        if (const auto q = constraints.outlines[label]->pull_back(to, models[label].gradient(to), constraints.outline_margin)) {
+        const PlaneOutline& outline = *constraints.outlines[label];
+        if (const auto q = outline.pull_back(to, models[label].gradient(to), constraints.outline_margin)) {
           far[i] = 2;
           target[i] = *q;
           return;

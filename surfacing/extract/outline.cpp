@@ -107,7 +107,8 @@ std::optional<Eigen::Vector3d> PlaneOutline::pull_back(const Eigen::Vector3d& x,
   if (k < 3) return std::nullopt;
   const Eigen::Vector3d plane_normal = u.cross(v);
   if (std::abs((x - origin).dot(plane_normal)) > near) return std::nullopt;
-  if (!(std::abs(normal.dot(plane_normal)) >= least_cosine * normal.norm())) return std::nullopt;
+  const double length = normal.norm();
+  if (!(length > 0.0 && std::abs(normal.dot(plane_normal)) >= least_cosine * length)) return std::nullopt;
   const Eigen::Vector2d p((x - origin).dot(u), (x - origin).dot(v));
   bool inside = true;
   for (std::size_t i = 0; i < k && inside; ++i) inside = cross(hull[(i + 1) % k] - hull[i], p - hull[i]) >= 0.0;
@@ -133,7 +134,8 @@ std::optional<Eigen::Vector3d> PlaneOutline::pull_back(const Eigen::Vector3d& x,
   return Eigen::Vector3d(origin + q.x() * u + q.y() * v);
 }
 
-std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
+std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
+                                                        const std::vector<ImplicitModel>& models,
                                                         const StrokeSegments& strokes, double diagonal,
                                                         const OutlineOptions& options) {
   std::vector<std::optional<PlaneOutline>> out(models.size());
@@ -175,7 +177,8 @@ std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
     const double least_cosine = std::cos(options.angle * M_PI / 180.0);
     for (const Eigen::Vector3d& p : ink) {
       const Eigen::Vector3d g = models[m].gradient(p);
-      flat += std::abs(plane.signed_distance(p)) <= tolerance && std::abs(g.dot(plane.normal)) >= least_cosine * g.norm();
+      flat += std::abs(plane.signed_distance(p)) <= tolerance && g.norm() > 0.0 &&
+              std::abs(g.dot(plane.normal)) >= least_cosine * g.norm();
     }
     if (flat < options.flat_share * ink.size()) continue;
     PlaneOutline outline;

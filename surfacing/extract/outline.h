@@ -57,7 +57,8 @@ struct PlaneOutline {
 /// (the best of planes through three of them, refit to its inliers) where the model's surface
 /// runs along that plane. The outline spans every stroke segment on that plane. `diagonal` scales
 /// the options' lengths; the result does not depend on anything but the inputs.
-std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
+std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
+                                                        const std::vector<ImplicitModel>& models,
                                                         const StrokeSegments& strokes, double diagonal,
                                                         const OutlineOptions& options);
 

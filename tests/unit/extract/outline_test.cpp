@@ -43,8 +43,10 @@ TEST(PlaneOutline, LeavesPointsInsideWithinTheMarginOrOffThePlane) {
   EXPECT_FALSE(square.pull_back({0.5, 0.5, 0.0}, kUp, 0.02));
   EXPECT_FALSE(square.pull_back({1.01, 0.5, 0.0}, kUp, 0.02)) << "within the margin";
   EXPECT_FALSE(square.pull_back({1.5, 0.5, 0.2}, kUp, 0.02)) << "farther from the plane than `near`";
-  EXPECT_FALSE(square.pull_back({1.5, 0.5, 0.0}, Eigen::Vector3d(1, 0, 1), 0.02)) << "a surface crossing the plane at 45 degrees";
+  EXPECT_FALSE(square.pull_back({1.5, 0.5, 0.0}, Eigen::Vector3d(1, 0, 1), 0.02))
+      << "a surface crossing the plane at 45 degrees";
   EXPECT_TRUE(square.pull_back({1.5, 0.5, 0.0}, Eigen::Vector3d(0.2, 0, -1), 0.02)) << "11 degrees, either side";
+  EXPECT_FALSE(square.pull_back({1.5, 0.5, 0.0}, Eigen::Vector3d::Zero(), 0.02)) << "no normal: no direction";
 }
 
 TEST(PlaneOutline, AnUndrawnEdgeLimitsNothing) {
@@ -83,7 +85,7 @@ TEST(PlaneOutline, EachFlatCapOfACylinderHasItsRimAsADrawnOutline) {
     const PlaneOutline& o = *outlines[cap];
     EXPECT_GT(o.hull.size(), 12u);
     for (std::size_t e = 0; e < o.drawn.size(); ++e)
-      EXPECT_TRUE(o.drawn[e]) << "cap " << cap << " edge " << e << " of " << o.drawn.size() << " from " << o.hull[e].transpose() << " to " << o.hull[(e + 1) % o.hull.size()].transpose();
+      EXPECT_TRUE(o.drawn[e]) << "cap " << cap << ", edge " << e << " of " << o.drawn.size();
     for (const Eigen::Vector2d& h : o.hull) {
       const Eigen::Vector3d p = o.origin + h.x() * o.u + h.y() * o.v;
       // The rim, and the ends of the cap's cross stroke (a chord at y = 0.2 r, x = +-r).
