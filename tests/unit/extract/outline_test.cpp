@@ -2,10 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 
-#include "surfacing/extract/extract.h"
 #include "tests/support/shapes.h"
 #include "tests/unit/extract/fixtures.h"
 
@@ -57,8 +55,7 @@ TEST(PlaneOutline, AnUndrawnEdgeLimitsNothing) {
   EXPECT_TRUE(square.pull_back({0.5, -0.5, 0.0}, kUp, 0.02)) << "edge 0 is drawn";
 }
 
-// The bundled-style cylinder's two caps, each labelled on a rounded-cylinder proxy of the same
-// size: every cap gets an outline round its rim circle, drawn all round; the side has none.
+// A drawn cylinder's two caps, each labelled on a rounded-cylinder proxy of the same size: every cap gets an outline round its rim circle, drawn all round; the side has none.
 TEST(PlaneOutline, EachFlatCapOfACylinderHasItsRimAsADrawnOutline) {
   const double radius = 0.5, half_height = 0.3;
   LabeledMesh mesh;
