@@ -55,7 +55,8 @@ TEST(PlaneOutline, AnUndrawnEdgeLimitsNothing) {
   EXPECT_TRUE(square.pull_back({0.5, -0.5, 0.0}, kUp, 0.02)) << "edge 0 is drawn";
 }
 
-// A drawn cylinder's two caps, each labelled on a rounded-cylinder proxy of the same size: every cap gets an outline round its rim circle, drawn all round; the side has none.
+// A drawn cylinder's two caps, each labelled on a rounded-cylinder proxy of the same size: every
+// cap gets an outline round its rim circle, drawn all round; the side has none.
 TEST(PlaneOutline, EachFlatCapOfACylinderHasItsRimAsADrawnOutline) {
   const double radius = 0.5, half_height = 0.3;
   LabeledMesh mesh;
