@@ -182,12 +182,11 @@ std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
     }
     if (flat < options.flat_share * ink.size()) continue;
     PlaneOutline outline;
-    const Eigen::Vector3d normal = plane.normal, mean = -plane.offset * plane.normal;
-    outline.origin = mean;
+    outline.origin = -plane.offset * plane.normal;  // the plane's point nearest the world origin
     outline.near = tolerance;
     outline.least_cosine = least_cosine;
-    outline.u = normal.unitOrthogonal();
-    outline.v = normal.cross(outline.u);
+    outline.u = plane.normal.unitOrthogonal();
+    outline.v = plane.normal.cross(outline.u);
     auto in_plane = [&](int i) {
       const Eigen::Vector3d d = strokes.points.row(i).transpose() - outline.origin;
       return Eigen::Vector2d(d.dot(outline.u), d.dot(outline.v));
