@@ -114,6 +114,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.far_tie", setter([](Params& p) -> auto& { return p.proxy.far_tie; })},
       {"proxy.far_most", setter([](Params& p) -> auto& { return p.proxy.far_most; })},
       {"proxy.far_extra_genus", setter([](Params& p) -> auto& { return p.proxy.far_extra_genus; })},
+      {"proxy.miss_distance", setter([](Params& p) -> auto& { return p.proxy.miss_distance; })},
       {"proxy.confine_margin", setter([](Params& p) -> auto& { return p.proxy.confine_margin; })},
       {"proxy.confine_radius", setter([](Params& p) -> auto& { return p.proxy.confine_radius; })},
       {"proxy.confine_near", setter([](Params& p) -> auto& { return p.proxy.confine_near; })},

@@ -481,6 +481,19 @@ double far_fraction(const TriangleArrays& mesh, const PointGrid& strokes, double
   return total > 0.0 ? far / total : 0.0;
 }
 
+// The fraction of `points` (the strokes, a cell apart) farther than `distance` from every vertex of
+// `mesh` (a polygonised zero set: its vertices lie under a cell apart). A stroke lies on the
+// surface it depicts; a smoothing that leaves many of them off its surface has melted away thin
+// parts (a lamp's neck inside a web from its head to its base, a chair's legs in a block).
+double missed_fraction(const TriangleArrays& mesh, const Eigen::MatrixX3d& points, double distance) {
+  if (points.rows() == 0 || mesh.V.rows() == 0) return 1.0;
+  const PointGrid vertices(mesh.V);
+  std::size_t missed = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    if (vertices.nearest(points.row(i).transpose(), distance).second > distance * distance) ++missed;
+  return static_cast<double>(missed) / static_cast<double>(points.rows());
+}
+
 // How the surface farther than `radius` from every stroke (`strokes`, the stroke points) is held
 // by the strokes around it, as fractions of the surface's area: `framed` where, seen in a face's
 // tangent plane, the strokes within twice its distance (and within 30 degrees of that plane)
@@ -622,6 +635,7 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(far_tie >= 0.0 && far_tie < 1.0)) return fail("proxy far_tie must be in [0, 1)");
   if (far_extra_genus < 0) return fail("proxy far_extra_genus must be >= 0");
   if (!(far_most > 0.0 && far_most <= 1.0)) return fail("proxy far_most must be in (0, 1]");
+  if (!(miss_distance > 0.0 && miss_distance < 1.0)) return fail("proxy miss_distance must be in (0, 1)");
   if (!(window_value >= 0.0 && window_value < 0.5))
     return fail("proxy window_value must be in [0, 0.5)");
   if (!(window_undrawn >= 0.0 && window_undrawn < 0.5))
@@ -956,6 +970,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.bridges = kept.bridges;
   r.necks = kept.necks;
   r.far_area = kept.far;
+  if (kept.mesh.F.rows() > 0) r.missed_strokes = missed_fraction(kept.mesh, stroke_points, options.miss_distance);
   r.vipss = kept.vipss->summary;
   r.evaluations = kept.evaluations;
   // Sections too sparse for VIPSS (a dress's waist and hem and a profile: its zero set runs out
@@ -968,6 +983,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (std::optional<Loft> loft = loft_sections(unit, loft_options)) {
       r.loft_sections = loft->sections;
       r.far_area = far_fraction(loft->mesh, stroke_grid, options.far_distance);
+      r.missed_strokes = missed_fraction(loft->mesh, stroke_points, options.miss_distance);
       r.polygonize_seconds += seconds_since(t);
       t0 = Clock::now();
       TriMesh mesh = mesh_from_matrices(loft->mesh.V, loft->mesh.F);

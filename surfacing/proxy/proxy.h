@@ -36,6 +36,8 @@ struct ProxyOptions {
                                ///< a flower's petals, a painterly scene) ...
   int far_extra_genus = 3;     ///< ... and at most this many more handles (more: windows through
                                ///< thin double walls, not openings the strokes depict)
+  double miss_distance = 0.02; ///< a stroke point farther than this from the proxy (fraction of
+                               ///< diagonal) counts as missed (report: missed_strokes)
   double confine_margin = 0.1;   ///< a zero set is confined when f has one sign all over the faces
                                  ///< of the samples' box grown by this (fraction of diagonal): no
                                  ///< sheet runs out past the strokes' extent to the box
@@ -181,6 +183,8 @@ struct ProxyReport {
   double lambda = 0.0;            ///< automatic proxy: the smoothing weight used
   double far_area = 0.0;          ///< automatic proxy: area fraction of the kept solve's surface
                                   ///< (or of the loft) farther than far_distance from every stroke
+  double missed_strokes = 0.0;    ///< automatic proxy: fraction of the stroke points farther than
+                                  ///< miss_distance from the kept solve's surface
   double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
   bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
   std::size_t loft_sections = 0;  ///< automatic proxy: the section loops it was lofted through

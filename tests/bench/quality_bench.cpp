@@ -95,7 +95,8 @@ ProxyRow proxy_row(const Sketch& sketch, const TriMesh& truth, const Params& par
                      eval.completeness.median, eval.completeness.p95, shape.outside_box, seconds,
                      truth_topology.genus == report.topology.genus &&
                          truth_topology.components == report.topology.components};
-  std::cout << report.lambda << " | " << pct(report.far_area) << "% | " << report.windows << " | "
+  std::cout << report.lambda << " | " << pct(report.far_area) << "% | " << pct(report.missed_strokes) << "% | "
+            << report.windows << " | "
             << pct(row.median) << " | " << pct(row.p95) << " | " << pct(row.max) << " | "
             << pct(row.complete_median) << " | " << pct(row.complete_p95) << " | "
             << truth_topology.genus << "/" << report.topology.genus << " | "
@@ -161,9 +162,9 @@ int main(int argc, char** argv) {
   const char* seed_header = several ? "| seed " : "";
   const char* seed_rule = several ? "|---" : "";
   if (proxy_only)
-    std::cout << "| case | style " << seed_header << "| strokes | lambda | far | window bumps | proxy acc. median | acc. p95 | acc. max | compl. "
+    std::cout << "| case | style " << seed_header << "| strokes | lambda | far | missed | window bumps | proxy acc. median | acc. p95 | acc. max | compl. "
                  "median | compl. p95 | genus true/proxy | components true/proxy | outside box | s |\n"
-              << "|---|---" << seed_rule << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+              << "|---|---" << seed_rule << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   else
     std::cout << "| case | style " << seed_header << "| strokes | proxy acc. median | proxy acc. p95 | acc. median | acc. p95 "
                "| acc. p99 | acc. max | compl. median | compl. p95 | creases found | crease err. "

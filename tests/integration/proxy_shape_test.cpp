@@ -23,10 +23,10 @@ struct Made {
   MeshTopology topology;
 };
 
-Made proxy_of(const std::string& shape, const SynthOptions& style = {}) {
+Made proxy_of(const std::string& shape, const SynthOptions& style = {}, const ProxyOptions& options = {}) {
   Made m;
   m.sketch = synthesize_sketch(testing::truth_shape(shape).mesh, style);
-  m.proxy = make_proxy(m.sketch, {}, {}, &m.report);
+  m.proxy = make_proxy(m.sketch, options, {}, &m.report);
   m.topology = mesh_topology(m.proxy);
   return m;
 }
@@ -102,6 +102,18 @@ TEST(ProxyShape, MugKeepsItsHandle) {
   EXPECT_EQ(m.topology.genus, 1);
   EXPECT_EQ(m.report.lambda, ProxyOptions{}.lambda_min);
   expect_handle_open_and_attached(m);
+  EXPECT_LT(m.report.missed_strokes, 0.01);
+}
+
+// The report tells a proxy that has melted away what the strokes depict: smoothed with the
+// ladder's largest weight, the mug's handle is webbed into its body and a third of the stroke
+// points lie farther than miss_distance from the surface.
+TEST(ProxyShape, AMugSmoothedIntoABlobMissesItsHandlesStrokes) {
+  ProxyOptions smooth;
+  smooth.lambda = smooth.lambda_max;
+  const Made m = proxy_of("mug", {}, smooth);
+  EXPECT_EQ(m.topology.genus, 0);
+  EXPECT_GT(m.report.missed_strokes, 0.2);
 }
 
 // Drawn mid-air (tremor, gaps, forgotten strokes), the double wall's inside layer pinches out
