@@ -202,7 +202,7 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
       mesh.set_point(TriMesh::VertexHandle(v), to_openmesh(held_at[static_cast<std::size_t>(v)]));
   };
   const bool any_outline = std::any_of(constraints.outlines.begin(), constraints.outlines.end(),
-                                       [](const auto& o) { return o.has_value(); });
+                                       [](const auto& o) { return !o.empty(); });
   const auto hold_far = [&](const std::vector<double>& at, bool solved) {
     if (!tree && !(options.box_margin > 0.0 && constraints.strokes) && !(solved && any_outline)) return false;
     const auto to_strokes = [&](const double* p) {
@@ -226,13 +226,13 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
       }
       if (!solved) return;
       for (int label : lm.labels[i]) {
-        if (static_cast<std::size_t>(label) >= constraints.outlines.size() || !constraints.outlines[label]) continue;
-        const PlaneOutline& outline = *constraints.outlines[label];
-        if (const auto q = outline.pull_back(to, models[label].gradient(to), constraints.outline_margin)) {
-          far[i] = 2;
-          target[i] = *q;
-          return;
-        }
+        if (static_cast<std::size_t>(label) >= constraints.outlines.size()) continue;
+        for (const PlaneOutline& outline : constraints.outlines[label])
+          if (const auto q = outline.pull_back(to, models[label].gradient(to), constraints.outline_margin)) {
+            far[i] = 2;
+            target[i] = *q;
+            return;
+          }
       }
     });
     bool any = false;

@@ -93,11 +93,11 @@ struct MeshConstraints {
                                        ///< the zero set: a thin part's far side (back_sides.h)
   double inside_gap = 0.0;             ///< mesh units
   std::optional<StrokeSegments> strokes;  ///< the strokes, for trust_distance (none: no limit)
-  std::vector<std::optional<PlaneOutline>> outlines;  ///< per model, or empty: a flat region's
-                                                      ///< drawn outline (outline.h); a vertex that
-                                                      ///< the solve leaves farther than
-                                                      ///< outline_margin outside it is held at its
-                                                      ///< closest point of the outline instead
+  std::vector<std::vector<PlaneOutline>> outlines;  ///< per model, or empty: a flat region's
+                                                    ///< drawn outlines (outline.h); a vertex that
+                                                    ///< the solve leaves farther than
+                                                    ///< outline_margin outside one is held at its
+                                                    ///< closest point of the outline instead
   double outline_margin = 0.0;         ///< mesh units
 };
 

@@ -134,11 +134,11 @@ std::optional<Eigen::Vector3d> PlaneOutline::pull_back(const Eigen::Vector3d& x,
   return Eigen::Vector3d(origin + q.x() * u + q.y() * v);
 }
 
-std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
+std::vector<std::vector<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
                                                         const std::vector<ImplicitModel>& models,
                                                         const StrokeSegments& strokes, double diagonal,
                                                         const OutlineOptions& options) {
-  std::vector<std::optional<PlaneOutline>> out(models.size());
+  std::vector<std::vector<PlaneOutline>> out(models.size());
   if (!(options.margin > 0.0) || strokes.points.rows() == 0) return out;
   const double tolerance = options.tolerance * diagonal, reach = options.reach * diagonal;
   // Per stroke point: the proxy face nearest to it, when within the tolerance.
@@ -153,6 +153,50 @@ std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
       if (f >= 0 && (q - p).norm() <= tolerance) face[static_cast<std::size_t>(i)] = f;
     }
   }
+  const double least_cosine = std::cos(options.angle * M_PI / 180.0);
+  // The outline on `plane`: the hull of the stroke segments on it (the region's and any other's: a
+  // stroke of the rim may lie beside another region's part of the proxy), each edge drawn or not.
+  const auto outline_on = [&](const Plane& plane, std::vector<PlaneOutline>& into) {
+    PlaneOutline outline;
+    outline.origin = -plane.offset * plane.normal;  // the plane's point nearest the world origin
+    outline.near = tolerance;
+    outline.least_cosine = least_cosine;
+    outline.u = plane.normal.unitOrthogonal();
+    outline.v = plane.normal.cross(outline.u);
+    auto in_plane = [&](int i) {
+      const Eigen::Vector3d d = strokes.points.row(i).transpose() - outline.origin;
+      return Eigen::Vector2d(d.dot(outline.u), d.dot(outline.v));
+    };
+    std::vector<Eigen::Vector2d> lines;  // two entries per segment
+    for (Eigen::Index s = 0; s < strokes.segments.rows(); ++s) {
+      const int i = strokes.segments(s, 0), j = strokes.segments(s, 1);
+      if (std::abs(plane.signed_distance(strokes.points.row(i).transpose())) > tolerance ||
+          std::abs(plane.signed_distance(strokes.points.row(j).transpose())) > tolerance)
+        continue;
+      lines.push_back(in_plane(i));
+      lines.push_back(in_plane(j));
+    }
+    outline.hull = convex_hull(lines);
+    const std::size_t k = outline.hull.size();
+    if (k < 3) return;
+    outline.drawn.assign(k, 0);
+    for (std::size_t e = 0; e < k; ++e) {
+      const Eigen::Vector2d a = outline.hull[e], b = outline.hull[(e + 1) % k];
+      const int samples = std::max(2, static_cast<int>(std::ceil(2.0 * (b - a).norm() / reach)));
+      int covered = 0;
+      for (int j = 0; j < samples; ++j) {
+        const Eigen::Vector2d p = a + (j + 0.5) / samples * (b - a);
+        double t = 0.0;
+        for (std::size_t s = 0; s < lines.size(); s += 2)
+          if (segment_distance(p, lines[s], lines[s + 1], &t) <= reach) {
+            ++covered;
+            break;
+          }
+      }
+      outline.drawn[e] = covered >= options.drawn_share * samples;
+    }
+    into.push_back(std::move(outline));
+  };
   std::vector<double> distance(static_cast<std::size_t>(points));
   for (std::size_t m = 0; m < models.size(); ++m) {
     // The region's strokes: on its model's surface, beside its part of the proxy.
@@ -171,57 +215,35 @@ std::vector<std::optional<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
     if (on.size() < 3) continue;
     std::vector<Eigen::Vector3d> ink;
     for (int s : on) ink.push_back(strokes.points.row(strokes.segments(s, 0)).transpose());
+    // Flat: on the plane, and the model's surface runs along it there.
+    const auto along = [&](const Plane& plane, const Eigen::Vector3d& p) {
+      const Eigen::Vector3d g = models[m].gradient(p);
+      return std::abs(plane.signed_distance(p)) <= tolerance && g.norm() > 0.0 &&
+             std::abs(g.dot(plane.normal)) >= least_cosine * g.norm();
+    };
     const Plane plane = dominant_plane(ink, tolerance);
     std::size_t flat = 0;
-    // Flat: on the plane, and the model's surface runs along it there.
-    const double least_cosine = std::cos(options.angle * M_PI / 180.0);
+    std::vector<Eigen::Vector3d> rest;
     for (const Eigen::Vector3d& p : ink) {
-      const Eigen::Vector3d g = models[m].gradient(p);
-      flat += std::abs(plane.signed_distance(p)) <= tolerance && g.norm() > 0.0 &&
-              std::abs(g.dot(plane.normal)) >= least_cosine * g.norm();
+      flat += along(plane, p);
+      if (!(std::abs(plane.signed_distance(p)) <= tolerance)) rest.push_back(p);
+    }
+    // A model whose zero set is a slab (a pair of parallel planes: a thin plate's two faces, a
+    // face and a section through the solid) has a second sheet, and the region's strokes on it
+    // are part of what makes it flat; past that sheet's outline its vertices spread as well.
+    std::optional<Plane> second;
+    if (rest.size() >= 3) {
+      const Plane other = dominant_plane(rest, tolerance);
+      std::size_t on_other = 0;
+      for (const Eigen::Vector3d& p : rest) on_other += along(other, p);
+      if (on_other >= 3 && std::abs(other.normal.dot(plane.normal)) >= least_cosine) {
+        second = other;
+        flat += on_other;
+      }
     }
     if (flat < options.flat_share * ink.size()) continue;
-    PlaneOutline outline;
-    outline.origin = -plane.offset * plane.normal;  // the plane's point nearest the world origin
-    outline.near = tolerance;
-    outline.least_cosine = least_cosine;
-    outline.u = plane.normal.unitOrthogonal();
-    outline.v = plane.normal.cross(outline.u);
-    auto in_plane = [&](int i) {
-      const Eigen::Vector3d d = strokes.points.row(i).transpose() - outline.origin;
-      return Eigen::Vector2d(d.dot(outline.u), d.dot(outline.v));
-    };
-    // The segments on the plane (the region's and any other's: a stroke of the rim may lie
-    // beside another region's part of the proxy) span and draw the outline.
-    std::vector<Eigen::Vector2d> lines;  // two entries per segment
-    for (Eigen::Index s = 0; s < strokes.segments.rows(); ++s) {
-      const int i = strokes.segments(s, 0), j = strokes.segments(s, 1);
-      if (std::abs(plane.signed_distance(strokes.points.row(i).transpose())) > tolerance ||
-          std::abs(plane.signed_distance(strokes.points.row(j).transpose())) > tolerance)
-        continue;
-      lines.push_back(in_plane(i));
-      lines.push_back(in_plane(j));
-    }
-    outline.hull = convex_hull(lines);
-    const std::size_t k = outline.hull.size();
-    if (k < 3) continue;
-    outline.drawn.assign(k, 0);
-    for (std::size_t e = 0; e < k; ++e) {
-      const Eigen::Vector2d a = outline.hull[e], b = outline.hull[(e + 1) % k];
-      const int samples = std::max(2, static_cast<int>(std::ceil(2.0 * (b - a).norm() / reach)));
-      int covered = 0;
-      for (int j = 0; j < samples; ++j) {
-        const Eigen::Vector2d p = a + (j + 0.5) / samples * (b - a);
-        double t = 0.0;
-        for (std::size_t s = 0; s < lines.size(); s += 2)
-          if (segment_distance(p, lines[s], lines[s + 1], &t) <= reach) {
-            ++covered;
-            break;
-          }
-      }
-      outline.drawn[e] = covered >= options.drawn_share * samples;
-    }
-    out[m] = std::move(outline);
+    outline_on(plane, out[m]);
+    if (second) outline_on(*second, out[m]);
   }
   return out;
 }

@@ -55,43 +55,72 @@ TEST(PlaneOutline, AnUndrawnEdgeLimitsNothing) {
   EXPECT_TRUE(square.pull_back({0.5, -0.5, 0.0}, kUp, 0.02)) << "edge 0 is drawn";
 }
 
-// A drawn cylinder's two caps, each labelled on a rounded-cylinder proxy of the same size: every
-// cap gets an outline round its rim circle, drawn all round; the side has none.
-TEST(PlaneOutline, EachFlatCapOfACylinderHasItsRimAsADrawnOutline) {
-  const double radius = 0.5, half_height = 0.3;
+constexpr double kRadius = 0.5, kHalfHeight = 0.3;
+
+// A drawn cylinder's outlines on a rounded-cylinder proxy of the same size, its side labelled 0
+// (x^2 + y^2 = r^2) and its caps 1 and 2 (planes), or both caps 1 when `slab` (z^2 = h^2: the two
+// parallel planes a quadric fits to a thin plate's faces).
+std::vector<std::vector<PlaneOutline>> cylinder_outlines(bool slab) {
   LabeledMesh mesh;
-  mesh.mesh = rounded_cylinder_mesh(4, radius, half_height, 0.02);
+  mesh.mesh = rounded_cylinder_mesh(4, kRadius, kHalfHeight, 0.02);
   for (auto v : mesh.mesh.vertices()) {
     const Eigen::Vector3d p = to_eigen(mesh.mesh.point(v));
     const double rho = std::hypot(p.x(), p.y());
-    mesh.labels.push_back({rho / radius > std::abs(p.z()) / half_height ? 0 : (p.z() > 0 ? 1 : 2)});
+    mesh.labels.push_back({rho / kRadius > std::abs(p.z()) / kHalfHeight ? 0 : (p.z() > 0 || slab ? 1 : 2)});
   }
   mesh.source_vertex.assign(mesh.mesh.n_vertices(), -1);
-  ImplicitModel side;  // x^2 + y^2 - r^2
+  ImplicitModel side;
   side.degree = 2;
   side.coefficients = Eigen::VectorXd::Zero(10);
-  side.coefficients << -radius * radius, 0, 0, 0, 1, 0, 0, 1, 0, 0;
-  const std::vector<ImplicitModel> models{side, plane_model({0, 0, 1}, half_height),
-                                          plane_model({0, 0, -1}, half_height)};
-  const Sketch sketch = cylinder_sketch(radius, 2 * half_height);
-  const double diagonal = sketch.bounding_box().diagonal();
-  const auto outlines = plane_outlines(mesh, models, stroke_segments(sketch, false), diagonal, {});
-  ASSERT_EQ(outlines.size(), 3u);
-  EXPECT_FALSE(outlines[0].has_value()) << "the side is curved";
-  for (int cap : {1, 2}) {
-    ASSERT_TRUE(outlines[cap].has_value()) << cap;
-    const PlaneOutline& o = *outlines[cap];
-    EXPECT_GT(o.hull.size(), 12u);
-    for (std::size_t e = 0; e < o.drawn.size(); ++e)
-      EXPECT_TRUE(o.drawn[e]) << "cap " << cap << ", edge " << e << " of " << o.drawn.size();
-    for (const Eigen::Vector2d& h : o.hull) {
-      const Eigen::Vector3d p = o.origin + h.x() * o.u + h.y() * o.v;
-      // The rim, and the ends of the cap's cross stroke (a chord at y = 0.2 r, x = +-r).
-      EXPECT_GE(std::hypot(p.x(), p.y()), radius - 1e-3);
-      EXPECT_LE(std::hypot(p.x(), p.y()), std::hypot(radius, 0.2 * radius) + 1e-6);
-      EXPECT_NEAR(std::abs(p.z()), half_height, 1e-3);
-    }
+  side.coefficients << -kRadius * kRadius, 0, 0, 0, 1, 0, 0, 1, 0, 0;
+  std::vector<ImplicitModel> models{side};
+  if (slab) {
+    ImplicitModel faces = side;
+    faces.coefficients << -kHalfHeight * kHalfHeight, 0, 0, 0, 0, 0, 0, 0, 0, 1;
+    models.push_back(faces);
+  } else {
+    models.push_back(plane_model({0, 0, 1}, kHalfHeight));
+    models.push_back(plane_model({0, 0, -1}, kHalfHeight));
   }
+  const Sketch sketch = cylinder_sketch(kRadius, 2 * kHalfHeight);
+  const double diagonal = sketch.bounding_box().diagonal();
+  return plane_outlines(mesh, models, stroke_segments(sketch, false), diagonal, {});
+}
+
+// A cap's outline: round its rim circle, drawn all round.
+void expect_rim(const PlaneOutline& o) {
+  EXPECT_GT(o.hull.size(), 12u);
+  for (std::size_t e = 0; e < o.drawn.size(); ++e)
+    EXPECT_TRUE(o.drawn[e]) << "edge " << e << " of " << o.drawn.size();
+  for (const Eigen::Vector2d& h : o.hull) {
+    const Eigen::Vector3d p = o.origin + h.x() * o.u + h.y() * o.v;
+    // The rim, and the ends of the cap's cross stroke (a chord at y = 0.2 r, x = +-r).
+    EXPECT_GE(std::hypot(p.x(), p.y()), kRadius - 1e-3);
+    EXPECT_LE(std::hypot(p.x(), p.y()), std::hypot(kRadius, 0.2 * kRadius) + 1e-6);
+    EXPECT_NEAR(std::abs(p.z()), kHalfHeight, 1e-3);
+  }
+}
+
+TEST(PlaneOutline, EachFlatCapOfACylinderHasItsRimAsADrawnOutline) {
+  const auto outlines = cylinder_outlines(false);
+  ASSERT_EQ(outlines.size(), 3u);
+  EXPECT_TRUE(outlines[0].empty()) << "the side is curved";
+  for (int cap : {1, 2}) {
+    ASSERT_EQ(outlines[cap].size(), 1u) << cap;
+    expect_rim(outlines[cap][0]);
+  }
+}
+
+// Both caps under one slab model: each of its two planes gets its own rim as an outline, so that
+// a proxy's bulge past either rim is pulled back (a thin plate's corner).
+TEST(PlaneOutline, BothPlanesOfASlabModelHaveTheirRimsAsOutlines) {
+  const auto outlines = cylinder_outlines(true);
+  ASSERT_EQ(outlines.size(), 2u);
+  EXPECT_TRUE(outlines[0].empty()) << "the side is curved";
+  ASSERT_EQ(outlines[1].size(), 2u);
+  expect_rim(outlines[1][0]);
+  expect_rim(outlines[1][1]);
+  EXPECT_NEAR(std::abs(outlines[1][0].origin.z() + outlines[1][1].origin.z()), 0.0, 1e-3) << "z = h and z = -h";
 }
 
 TEST(OutlineOptions, RejectsInvalidValuesAndNamesTheParameter) {
