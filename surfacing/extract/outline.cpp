@@ -226,24 +226,22 @@ std::vector<std::vector<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
     std::vector<Eigen::Vector3d> rest;
     for (const Eigen::Vector3d& p : ink) {
       flat += along(plane, p);
-      if (!(std::abs(plane.signed_distance(p)) <= tolerance)) rest.push_back(p);
+      if (!(std::abs(plane.signed_distance(p)) <= 2.0 * tolerance)) rest.push_back(p);
     }
-    // A model whose zero set is a slab (a pair of parallel planes: a thin plate's two faces, a
-    // face and a section through the solid) has a second sheet, and the region's strokes on it
-    // are part of what makes it flat; past that sheet's outline its vertices spread as well.
-    std::optional<Plane> second;
+    if (flat < options.flat_share * ink.size()) continue;
+    outline_on(plane, out[m]);
+    // A flat region's model may be a slab (a pair of parallel planes: a thin plate's two faces, a
+    // face and a section through the solid); past its second plane's outline the region's
+    // vertices spread as well. That plane lies clear of the first (no vertex near both) and
+    // carries at least three of the region's strokes.
     if (rest.size() >= 3) {
       const Plane other = dominant_plane(rest, tolerance);
       std::size_t on_other = 0;
       for (const Eigen::Vector3d& p : rest) on_other += along(other, p);
-      if (on_other >= 3 && std::abs(other.normal.dot(plane.normal)) >= least_cosine) {
-        second = other;
-        flat += on_other;
-      }
+      if (on_other >= 3 && std::abs(other.normal.dot(plane.normal)) >= least_cosine &&
+          std::abs(plane.signed_distance(-other.offset * other.normal)) > 2.0 * tolerance)
+        outline_on(other, out[m]);
     }
-    if (flat < options.flat_share * ink.size()) continue;
-    outline_on(plane, out[m]);
-    if (second) outline_on(*second, out[m]);
   }
   return out;
 }

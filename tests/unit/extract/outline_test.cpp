@@ -58,15 +58,17 @@ TEST(PlaneOutline, AnUndrawnEdgeLimitsNothing) {
 constexpr double kRadius = 0.5, kHalfHeight = 0.3;
 
 // A drawn cylinder's outlines on a rounded-cylinder proxy of the same size, its side labelled 0
-// (x^2 + y^2 = r^2) and its caps 1 and 2 (planes), or both caps 1 when `slab` (z^2 = h^2: the two
-// parallel planes a quadric fits to a thin plate's faces).
+// (x^2 + y^2 = r^2) and its caps 1 and 2 (planes). When `slab`, label 1 takes the bottom cap's
+// part beyond x = 0.6 r as well and its model is z^2 = h^2: the two parallel planes a quadric
+// fits to a thin plate's faces, with the strokes of one face and a few of the other's.
 std::vector<std::vector<PlaneOutline>> cylinder_outlines(bool slab) {
   LabeledMesh mesh;
   mesh.mesh = rounded_cylinder_mesh(4, kRadius, kHalfHeight, 0.02);
   for (auto v : mesh.mesh.vertices()) {
     const Eigen::Vector3d p = to_eigen(mesh.mesh.point(v));
     const double rho = std::hypot(p.x(), p.y());
-    mesh.labels.push_back({rho / kRadius > std::abs(p.z()) / kHalfHeight ? 0 : (p.z() > 0 || slab ? 1 : 2)});
+    const bool top = p.z() > 0 || (slab && p.x() > 0.6 * kRadius);
+    mesh.labels.push_back({rho / kRadius > std::abs(p.z()) / kHalfHeight ? 0 : (top ? 1 : 2)});
   }
   mesh.source_vertex.assign(mesh.mesh.n_vertices(), -1);
   ImplicitModel side;
@@ -80,8 +82,8 @@ std::vector<std::vector<PlaneOutline>> cylinder_outlines(bool slab) {
     models.push_back(faces);
   } else {
     models.push_back(plane_model({0, 0, 1}, kHalfHeight));
-    models.push_back(plane_model({0, 0, -1}, kHalfHeight));
   }
+  models.push_back(plane_model({0, 0, -1}, kHalfHeight));
   const Sketch sketch = cylinder_sketch(kRadius, 2 * kHalfHeight);
   const double diagonal = sketch.bounding_box().diagonal();
   return plane_outlines(mesh, models, stroke_segments(sketch, false), diagonal, {});
@@ -111,16 +113,19 @@ TEST(PlaneOutline, EachFlatCapOfACylinderHasItsRimAsADrawnOutline) {
   }
 }
 
-// Both caps under one slab model: each of its two planes gets its own rim as an outline, so that
-// a proxy's bulge past either rim is pulled back (a thin plate's corner).
+// A slab model over the top cap and part of the bottom one: each of its two planes gets its own
+// rim as an outline, so that a proxy's bulge past either rim is pulled back (a thin plate's
+// corner); the rest of the bottom cap keeps its own.
 TEST(PlaneOutline, BothPlanesOfASlabModelHaveTheirRimsAsOutlines) {
   const auto outlines = cylinder_outlines(true);
-  ASSERT_EQ(outlines.size(), 2u);
+  ASSERT_EQ(outlines.size(), 3u);
   EXPECT_TRUE(outlines[0].empty()) << "the side is curved";
   ASSERT_EQ(outlines[1].size(), 2u);
   expect_rim(outlines[1][0]);
   expect_rim(outlines[1][1]);
-  EXPECT_NEAR(std::abs(outlines[1][0].origin.z() + outlines[1][1].origin.z()), 0.0, 1e-3) << "z = h and z = -h";
+  EXPECT_NEAR(outlines[1][0].origin.z() + outlines[1][1].origin.z(), 0.0, 1e-3) << "z = h and z = -h";
+  ASSERT_EQ(outlines[2].size(), 1u);
+  expect_rim(outlines[2][0]);
 }
 
 TEST(OutlineOptions, RejectsInvalidValuesAndNamesTheParameter) {
