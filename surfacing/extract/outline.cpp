@@ -135,9 +135,9 @@ std::optional<Eigen::Vector3d> PlaneOutline::pull_back(const Eigen::Vector3d& x,
 }
 
 std::vector<std::vector<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
-                                                        const std::vector<ImplicitModel>& models,
-                                                        const StrokeSegments& strokes, double diagonal,
-                                                        const OutlineOptions& options) {
+                                                      const std::vector<ImplicitModel>& models,
+                                                      const StrokeSegments& strokes, double diagonal,
+                                                      const OutlineOptions& options) {
   std::vector<std::vector<PlaneOutline>> out(models.size());
   if (!(options.margin > 0.0) || strokes.points.rows() == 0) return out;
   const double tolerance = options.tolerance * diagonal, reach = options.reach * diagonal;

@@ -54,14 +54,15 @@ struct PlaneOutline {
 /// Per model: the outlines of its region when the region is flat, none otherwise. A region's
 /// strokes are the stroke segments on its model's surface whose nearest face of `mesh` (the
 /// labelled proxy) is the region's; it is flat when options.flat_share of them lie on one plane
-/// (the best of planes through three of them, refit to its inliers), or on that plane and one
-/// parallel to it (at least three of the others: a model whose zero set is a slab, a thin plate's
-/// two faces), where the model's surface runs along the plane. Each plane's outline spans every
-/// stroke segment on it. `diagonal` scales the options' lengths; the result does not depend on
-/// anything but the inputs.
+/// (the best of planes through three of them, refit to its inliers) where the model's surface
+/// runs along that plane. A flat region gets a second outline on a plane parallel to the first,
+/// farther than twice the tolerance from it, when at least three of its other strokes lie on that
+/// one (a model whose zero set is a slab: a thin plate's two faces). Each plane's outline spans
+/// every stroke segment on it. `diagonal` scales the options' lengths; the result does not depend
+/// on anything but the inputs.
 std::vector<std::vector<PlaneOutline>> plane_outlines(const LabeledMesh& mesh,
-                                                        const std::vector<ImplicitModel>& models,
-                                                        const StrokeSegments& strokes, double diagonal,
-                                                        const OutlineOptions& options);
+                                                      const std::vector<ImplicitModel>& models,
+                                                      const StrokeSegments& strokes, double diagonal,
+                                                      const OutlineOptions& options);
 
 }  // namespace sketchsurf

@@ -970,7 +970,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.bridges = kept.bridges;
   r.necks = kept.necks;
   r.far_area = kept.far;
-  if (kept.mesh.F.rows() > 0) r.missed_strokes = missed_fraction(kept.mesh, stroke_points, options.miss_distance);
+  if (kept.mesh.F.rows() > 0)
+    r.missed_strokes = missed_fraction(kept.mesh, stroke_points, options.miss_distance);
   r.vipss = kept.vipss->summary;
   r.evaluations = kept.evaluations;
   // Sections too sparse for VIPSS (a dress's waist and hem and a profile: its zero set runs out

@@ -23,7 +23,8 @@ struct Made {
   MeshTopology topology;
 };
 
-Made proxy_of(const std::string& shape, const SynthOptions& style = {}, const ProxyOptions& options = {}) {
+Made proxy_of(const std::string& shape, const SynthOptions& style = {},
+              const ProxyOptions& options = {}) {
   Made m;
   m.sketch = synthesize_sketch(testing::truth_shape(shape).mesh, style);
   m.proxy = make_proxy(m.sketch, options, {}, &m.report);
