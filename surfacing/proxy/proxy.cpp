@@ -225,6 +225,7 @@ class ConfinedField {
   const std::vector<Bump>& bumps() const { return bumps_; }
   void set_outline(const Outline* outline) { outline_ = outline; }
   void set_radius(double radius) { radius_ = radius; }
+  void set_within(const BoundingBox& within) { within_ = within; }
 
   // g at p and the Newton step that moves p onto g = 0 to first order (value_from() gives g
   // alone).
@@ -589,6 +590,36 @@ TriMesh finish(TriMesh mesh, const Frame& frame, Clock::time_point start, ProxyR
   return mesh;
 }
 
+// The strokes' box (`strokes_box`, of `points`) grown by confine_box, except on the sides where
+// the strokes draw a face: those within confine_box of the side span at least confine_box_span of
+// the box along both of its directions (a box's side, a plate's face, a cup's rim and base), which
+// are grown by confine_box_tight only. Where the strokes only touch a side (the top of a dome drawn
+// by a few meridians), a cut closer to them would flatten the surface they leave to the smoothing.
+BoundingBox drawn_in_box(const BoundingBox& strokes_box, const Eigen::MatrixX3d& points,
+                         const ProxyOptions& options) {
+  BoundingBox out = strokes_box;
+  const Eigen::Vector3d width = strokes_box.max - strokes_box.min;
+  for (int a = 0; a < 3; ++a)
+    for (const bool high : {false, true}) {
+      const int u = (a + 1) % 3, v = (a + 2) % 3;
+      BoundingBox near;
+      for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        const double gap = high ? strokes_box.max[a] - points(i, a) : points(i, a) - strokes_box.min[a];
+        if (gap <= options.confine_box) near.extend(points.row(i).transpose());
+      }
+      const bool face = options.confine_box_tight > 0.0 && options.confine_box_tight < options.confine_box &&
+                        !near.empty() &&
+                        near.max[u] - near.min[u] >= options.confine_box_span * width[u] &&
+                        near.max[v] - near.min[v] >= options.confine_box_span * width[v];
+      const double margin = face ? options.confine_box_tight : options.confine_box;
+      if (high)
+        out.max[a] += margin;
+      else
+        out.min[a] -= margin;
+    }
+  return out;
+}
+
 }  // namespace
 
 
@@ -613,6 +644,10 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(near_open_least >= 0.0 && near_open_least <= 1.0))
     return fail("proxy near_open_least must be in [0, 1]");
   if (!(confine_box >= 0.0 && confine_box < 1.0)) return fail("proxy confine_box must be in [0, 1)");
+  if (!(confine_box_tight >= 0.0 && confine_box_tight <= confine_box))
+    return fail("proxy confine_box_tight must be in [0, confine_box]");
+  if (!(confine_box_span >= 0.0 && confine_box_span <= 1.0))
+    return fail("proxy confine_box_span must be in [0, 1]");
   if (!(outline_gap >= 0.0 && outline_gap < 1.0)) return fail("proxy outline_gap must be in [0, 1)");
   if (!(outline_reach > 0.0 && outline_reach < 1.0))
     return fail("proxy outline_reach must be in (0, 1)");
@@ -734,8 +769,9 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   Outline outline;
   find_outline(unit, options, outline);
   r.confine_radius = options.confine_radius;
-  BoundingBox within;
-  for (Eigen::Index i = 0; i < stroke_points.rows(); ++i) within.extend(stroke_points.row(i).transpose());
+  BoundingBox strokes_box;
+  for (Eigen::Index i = 0; i < stroke_points.rows(); ++i) strokes_box.extend(stroke_points.row(i).transpose());
+  BoundingBox within = strokes_box;
   within.min.array() -= options.confine_box;
   within.max.array() += options.confine_box;
   PolygonizeOptions poly;
@@ -961,7 +997,38 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (mesh.F.rows() > 0 && topology.genus <= kept.genus && topology.components <= kept.components) {
       kept.field = std::move(cut);
       kept.mesh = std::move(mesh);
+      kept.genus = topology.genus;
+      kept.components = topology.components;
       r.outline_cut = true;
+    }
+    r.polygonize_seconds += seconds_since(t);
+  }
+  // The box drawn in on its sides where the strokes draw a face (drawn_in_box) and the surface
+  // reaches past: such a face is cut close to its strokes instead of at the wider box. Kept when
+  // it adds no handle and splits nothing (a thin foot whose top dips towards its flat bottom would
+  // be pierced).
+  const BoundingBox tight = drawn_in_box(strokes_box, stroke_points, options);
+  const auto reaches_past = [&](const TriangleArrays& mesh) {
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
+      if ((mesh.V.row(i).array() < tight.min.transpose().array()).any() ||
+          (mesh.V.row(i).array() > tight.max.transpose().array()).any())
+        return true;
+    return false;
+  };
+  const bool drawn = (tight.min.array() != within.min.array()).any() ||
+                     (tight.max.array() != within.max.array()).any();
+  if (drawn && r.confine_radius > 0.0 && kept.mesh.F.rows() > 0 && reaches_past(kept.mesh)) {
+    const auto t = Clock::now();
+    auto drawn_in = std::make_unique<ConfinedField>(*kept.field);
+    drawn_in->set_within(tight);
+    TriangleArrays mesh;
+    GridMemo tight_caps(box.min, options.cell);
+    const MeshTopology topology = polygonise(*drawn_in, tight_caps, *kept.rbf, mesh, kept.evaluations);
+    if (mesh.F.rows() > 0 && topology.genus <= kept.genus && topology.components <= kept.components) {
+      kept.field = std::move(drawn_in);
+      kept.mesh = std::move(mesh);
+      for (int a = 0; a < 3; ++a)
+        r.box_drawn_in += (tight.min[a] > within.min[a]) + (tight.max[a] < within.max[a]);
     }
     r.polygonize_seconds += seconds_since(t);
   }

@@ -69,6 +69,18 @@ struct ProxyOptions {
                                 ///< the strokes' bounding box either (fraction of diagonal): the
                                 ///< offset surface that closes a cut would reach confine_radius
                                 ///< past the outermost strokes
+  double confine_box_tight = 0.002;  ///< the box's sides where the strokes draw a face are then
+                                     ///< drawn in to this (fraction of diagonal; 0 = off), where
+                                     ///< that adds no handle and splits nothing: a box's side, a
+                                     ///< plate's face, a cup's cap is cut on its strokes, the cut's
+                                     ///< rim on the face's edge strokes (cut farther out, the rim
+                                     ///< is a fold inside the face that its patch keeps as a bump);
+                                     ///< not during the choice of smoothing, which it would sway
+  double confine_box_span = 0.75;    ///< a side is a drawn face when the strokes within
+                                     ///< confine_box of it span at least this fraction of the box
+                                     ///< along both of its directions (a box's face, a cup's rim);
+                                     ///< where they only touch it (the top of a dome) a closer cut
+                                     ///< would flatten the surface and its patch would bulge
   double outline_gap = 0.04;    ///< with confine_radius > 0, no surface farther than this
                                 ///< (fraction of diagonal; 0 = off) beyond the sketch's
                                 ///< outline: at a stroke point whose nearby
@@ -187,6 +199,7 @@ struct ProxyReport {
                                   ///< miss_distance from the kept solve's surface
   double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
   bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
+  int box_drawn_in = 0;           ///< automatic proxy: sides of the box drawn in (confine_box_tight)
   std::size_t loft_sections = 0;  ///< automatic proxy: the section loops it was lofted through
                                   ///< (0: VIPSS's surface)
   std::size_t windows = 0;        ///< automatic proxy: membrane bumps closing windows

@@ -10,6 +10,8 @@
 #include <string>
 
 #include "surfacing/proxy/proxy.h"
+#include "surfacing/quality/checks.h"
+#include "surfacing/quality/eval.h"
 #include "surfacing/quality/synth.h"
 #include "tests/support/truth_suite.h"
 
@@ -308,6 +310,42 @@ TEST(ProxyShape, ThinPlateIsNotInflated) {
   const MeshTopology topology = mesh_topology(m.proxy);
   EXPECT_EQ(topology.components, 1u);
   EXPECT_EQ(topology.genus, 0);
+}
+
+// A face drawn at the strokes' extreme (a box's side, a plate's face) is cut by the box round the
+// strokes; drawn in after the choice of smoothing, the cut lies on them, not two hundredths of the
+// diagonal out, and no area is left on the check's box there.
+TEST(ProxyShape, FacesAtTheStrokesExtremeAreCutCloseToThem) {
+  for (const std::string shape : {"box", "plate_two_holes"}) {
+    const testing::TruthShape truth = testing::truth_shape(shape);
+    const Made m = proxy_of(shape);
+    EXPECT_EQ(m.report.box_drawn_in, 6) << shape;
+    const Evaluation e = evaluate(m.proxy, truth.mesh);
+    EXPECT_LT(e.accuracy.p95, 0.007) << shape;
+    EXPECT_LT(e.completeness.p95, 0.007) << shape;
+    EXPECT_EQ(check_shape(m.proxy, {}, m.sketch, false).outside_box, 0.0) << shape;
+    EXPECT_EQ(m.topology.genus, truth.genus) << shape;
+  }
+}
+
+// Blobs drawn by a few loops (metaballs, vr) only touch the sides of their box: their smooth
+// surface bulges past the strokes there, and a closer cut would flatten it.
+TEST(ProxyShape, BlobsReachingPastTheirStrokesAreNotFlattened) {
+  const Made m = proxy_of("metaballs", vr_style(3));
+  EXPECT_EQ(m.report.box_drawn_in, 0);
+  BoundingBox strokes = m.sketch.bounding_box(), proxy;
+  for (const auto v : m.proxy.vertices()) proxy.extend(to_eigen(m.proxy.point(v)));
+  const double past = std::max((proxy.max - strokes.max).maxCoeff(), (strokes.min - proxy.min).maxCoeff());
+  EXPECT_GT(past, 0.011 * strokes.diagonal()) << "the surface past a side";
+}
+
+// Where drawing the box in would pierce the surface (a wineglass's thin foot, drawn in vr, whose
+// top dips towards its flat bottom: two holes), the wider cut is kept.
+TEST(ProxyShape, DrawingTheBoxInPiercesNoThinFoot) {
+  const Made m = proxy_of("wineglass", vr_style(3));
+  EXPECT_EQ(m.report.box_drawn_in, 0);
+  EXPECT_EQ(m.topology.genus, 0);
+  EXPECT_EQ(m.topology.components, 1u);
 }
 
 }  // namespace
