@@ -986,23 +986,29 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     });
     return std::find(beyond.begin(), beyond.end(), 1) != beyond.end();
   };
-  if (outline.grid && kept.mesh.F.rows() > 0 && kept.far <= options.outline_most &&
-      crosses_outline(kept.mesh)) {
+  // The kept solve's field changed by `change` (a further cut) and polygonised again; kept when
+  // that adds no handle and splits nothing. Returns whether it was kept.
+  const auto try_cut = [&](auto&& change) {
     const auto t = Clock::now();
     auto cut = std::make_unique<ConfinedField>(*kept.field);
-    cut->set_outline(&outline);
+    change(*cut);
     TriangleArrays mesh;
     GridMemo cut_caps(box.min, options.cell);
     const MeshTopology topology = polygonise(*cut, cut_caps, *kept.rbf, mesh, kept.evaluations);
-    if (mesh.F.rows() > 0 && topology.genus <= kept.genus && topology.components <= kept.components) {
+    const bool keep =
+        mesh.F.rows() > 0 && topology.genus <= kept.genus && topology.components <= kept.components;
+    if (keep) {
       kept.field = std::move(cut);
       kept.mesh = std::move(mesh);
       kept.genus = topology.genus;
       kept.components = topology.components;
-      r.outline_cut = true;
     }
     r.polygonize_seconds += seconds_since(t);
-  }
+    return keep;
+  };
+  if (outline.grid && kept.mesh.F.rows() > 0 && kept.far <= options.outline_most &&
+      crosses_outline(kept.mesh))
+    r.outline_cut = try_cut([&](ConfinedField& g) { g.set_outline(&outline); });
   // The box drawn in on its sides where the strokes draw a face (drawn_in_box) and the surface
   // reaches past: such a face is cut close to its strokes instead of at the wider box. Kept when
   // it adds no handle and splits nothing (a thin foot whose top dips towards its flat bottom would
@@ -1017,21 +1023,10 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   };
   const bool drawn = (tight.min.array() != within.min.array()).any() ||
                      (tight.max.array() != within.max.array()).any();
-  if (drawn && r.confine_radius > 0.0 && kept.mesh.F.rows() > 0 && reaches_past(kept.mesh)) {
-    const auto t = Clock::now();
-    auto drawn_in = std::make_unique<ConfinedField>(*kept.field);
-    drawn_in->set_within(tight);
-    TriangleArrays mesh;
-    GridMemo tight_caps(box.min, options.cell);
-    const MeshTopology topology = polygonise(*drawn_in, tight_caps, *kept.rbf, mesh, kept.evaluations);
-    if (mesh.F.rows() > 0 && topology.genus <= kept.genus && topology.components <= kept.components) {
-      kept.field = std::move(drawn_in);
-      kept.mesh = std::move(mesh);
-      for (int a = 0; a < 3; ++a)
-        r.box_drawn_in += (tight.min[a] > within.min[a]) + (tight.max[a] < within.max[a]);
-    }
-    r.polygonize_seconds += seconds_since(t);
-  }
+  if (drawn && r.confine_radius > 0.0 && kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
+      try_cut([&](ConfinedField& g) { g.set_within(tight); }))
+    for (int a = 0; a < 3; ++a)
+      r.box_drawn_in += (tight.min[a] > within.min[a]) + (tight.max[a] < within.max[a]);
   r.lambda = kept.lambda;
   r.windows = kept.windows;
   r.bridges = kept.bridges;
