@@ -110,9 +110,14 @@ TEST(Proxy, SharpCubeSketchGivesAClosedGenusZeroProxy) {
   EXPECT_EQ(t.components, 1u);
   EXPECT_EQ(t.genus, 0);
   EXPECT_TRUE(report.vipss.closed);
-  const double blob = median_off_cube(proxy);
-  EXPECT_LT(blob, 0.03 * diagonal);  // a blob around the cube
-  // Attracted to the strokes as well, it flattens between them: much nearer the cube.
+  // Its faces are drawn at the strokes' extremes: the box is drawn in onto them.
+  EXPECT_EQ(report.box_drawn_in, 6);
+  EXPECT_LT(median_off_cube(proxy), 0.005 * diagonal);
+  // Without that, a blob around the cube; attracted to the strokes as well, it flattens between
+  // them: much nearer the cube.
+  options.confine_box_tight = 0.0;
+  const double blob = median_off_cube(make_proxy(sketch, options, {}, &report));
+  EXPECT_LT(blob, 0.03 * diagonal);
   options.attract_vipss = true;
   const TriMesh attracted = make_proxy(sketch, options, {}, &report);
   EXPECT_EQ(mesh_topology(attracted).genus, 0);
