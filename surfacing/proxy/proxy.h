@@ -75,6 +75,8 @@ struct ProxyOptions {
                                      ///< plate's face, a cup's cap is cut on its strokes, the cut's
                                      ///< rim on the face's edge strokes (cut farther out, the rim
                                      ///< is a fold inside the face that its patch keeps as a bump);
+                                     ///< where that would pierce or split the surface, halfway
+                                     ///< between this and confine_box under the same condition;
                                      ///< not during the choice of smoothing, which it would sway
   double confine_box_span = 0.75;    ///< a side is a drawn face when the strokes within
                                      ///< confine_box of it span at least this fraction of the box

@@ -183,7 +183,9 @@ ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, con
       tree.closest_face(p, &q);
       distance[i] = (q - p).norm() / diagonal;
     });
-    const V3 margin = V3::Constant(options.box_margin * diagonal);
+    // A surface cut on the grown box (the automatic proxy's confinement) lies on it, its points
+    // off by rounding only: those count as inside.
+    const V3 margin = V3::Constant((options.box_margin + 1e-9) * diagonal);
     // Only the samples far from every stroke need the (slower) surround test.
     std::vector<char> beyond(n, 0);
     parallel_for(0, n, options.threads, [&](std::size_t i) {

@@ -18,6 +18,7 @@ struct CheckOptions {
   std::size_t samples = 20000;  ///< area-weighted sample points on the surface
   double box_margin = 0.02;     ///< the strokes' bounding box is grown by this fraction of its
                                 ///< diagonal on every side before area outside it is counted
+                                ///< (area on the grown box is inside)
   double reach = 0.4;           ///< fraction of the diagonal: strokes this close to a surface
                                 ///< point count when deciding whether strokes surround it
   double warn_beyond = 0.02;    ///< warn when more than this fraction of the area lies beyond

@@ -348,5 +348,21 @@ TEST(ProxyShape, DrawingTheBoxInPiercesNoThinFoot) {
   EXPECT_EQ(m.topology.components, 1u);
 }
 
+// Where the close cut would pierce the foot but one halfway out does not (the wineglass drawn as a
+// curve network: its rim's cap and its foot's bottom), the faces are cut halfway out, inside the
+// check's box and still one closed surface.
+TEST(ProxyShape, ACutThatWouldPierceIsMadeHalfwayOut) {
+  const Made m = proxy_of("wineglass");
+  EXPECT_EQ(m.report.box_drawn_in, 2);
+  EXPECT_EQ(m.topology.genus, 0);
+  EXPECT_EQ(m.topology.components, 1u);
+  const BoundingBox strokes = m.sketch.bounding_box();
+  BoundingBox proxy;
+  for (const auto v : m.proxy.vertices()) proxy.extend(to_eigen(m.proxy.point(v)));
+  const double past = std::max((proxy.max - strokes.max).maxCoeff(), (strokes.min - proxy.min).maxCoeff());
+  EXPECT_LT(past, 0.0115 * strokes.diagonal()) << "the surface past a side";
+  EXPECT_EQ(check_shape(m.proxy, {}, m.sketch, false).outside_box, 0.0);
+}
+
 }  // namespace
 }  // namespace sketchsurf
