@@ -69,10 +69,10 @@ struct ProxyOptions {
                                 ///< the strokes' bounding box either (fraction of diagonal): the
                                 ///< offset surface that closes a cut would reach confine_radius
                                 ///< past the outermost strokes
-  double confine_box_tight = 1e-4;  ///< the box's sides where the strokes draw a face are then
-                                     ///< drawn in to this (fraction of diagonal; 0 = off: on the
-                                     ///< outermost strokes, a cut farther out would leave the face
-                                     ///< that far off them), where
+  double confine_box_tight = 1e-4;   ///< the box's sides where the strokes draw a face are then
+                                     ///< drawn in to this (fraction of diagonal; 0 = off): onto
+                                     ///< their outermost strokes (a face cut farther out lies that
+                                     ///< far off them), where
                                      ///< that adds no handle and splits nothing: a box's side, a
                                      ///< plate's face, a cup's cap is cut on its strokes, the cut's
                                      ///< rim on the face's edge strokes (cut farther out, the rim
