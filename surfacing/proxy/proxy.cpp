@@ -590,14 +590,14 @@ TriMesh finish(TriMesh mesh, const Frame& frame, Clock::time_point start, ProxyR
   return mesh;
 }
 
-// The strokes' box (`strokes_box`, of `points`) grown by confine_box, except on the sides where
-// the strokes draw a face: those within confine_box of the side span at least confine_box_span of
-// the box along both of its directions (a box's side, a plate's face, a cup's rim and base), which
-// are grown by `face_margin` only. Where the strokes only touch a side (the top of a dome drawn
-// by a few meridians), a cut closer to them would flatten the surface they leave to the smoothing.
-BoundingBox drawn_in_box(const BoundingBox& strokes_box, const Eigen::MatrixX3d& points,
-                         const ProxyOptions& options, double face_margin) {
-  BoundingBox out = strokes_box;
+// The sides of the strokes' box (`strokes_box`, of `points`; [axis][0: low, 1: high]) where the
+// strokes draw a face: those within confine_box of the side span at least confine_box_span of the
+// box along both of its directions (a box's side, a plate's face, a cup's rim and base). Where
+// the strokes only touch a side (the top of a dome drawn by a few meridians), a cut closer to
+// them would flatten the surface they leave to the smoothing.
+std::array<std::array<bool, 2>, 3> drawn_faces(const BoundingBox& strokes_box, const Eigen::MatrixX3d& points,
+                                               const ProxyOptions& options) {
+  std::array<std::array<bool, 2>, 3> faces{};
   const Eigen::Vector3d width = strokes_box.max - strokes_box.min;
   for (int a = 0; a < 3; ++a)
     for (const bool high : {false, true}) {
@@ -607,16 +607,10 @@ BoundingBox drawn_in_box(const BoundingBox& strokes_box, const Eigen::MatrixX3d&
         const double gap = high ? strokes_box.max[a] - points(i, a) : points(i, a) - strokes_box.min[a];
         if (gap <= options.confine_box) near.extend(points.row(i).transpose());
       }
-      const bool face = face_margin > 0.0 && face_margin < options.confine_box && !near.empty() &&
-                        near.max[u] - near.min[u] >= options.confine_box_span * width[u] &&
-                        near.max[v] - near.min[v] >= options.confine_box_span * width[v];
-      const double margin = face ? face_margin : options.confine_box;
-      if (high)
-        out.max[a] += margin;
-      else
-        out.min[a] -= margin;
+      faces[a][high] = !near.empty() && near.max[u] - near.min[u] >= options.confine_box_span * width[u] &&
+                       near.max[v] - near.min[v] >= options.confine_box_span * width[v];
     }
-  return out;
+  return faces;
 }
 
 }  // namespace
@@ -1008,12 +1002,21 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   if (outline.grid && kept.mesh.F.rows() > 0 && kept.far <= options.outline_most &&
       crosses_outline(kept.mesh))
     r.outline_cut = try_cut([&](ConfinedField& g) { g.set_outline(&outline); });
-  // The box drawn in on its sides where the strokes draw a face (drawn_in_box) and the surface
+  // The box drawn in on its sides where the strokes draw a face (drawn_faces) and the surface
   // reaches past: such a face is cut close to its strokes instead of at the wider box. Kept when
   // it adds no handle and splits nothing; where the close cut would (a thin foot whose top dips
   // towards its flat bottom would be pierced), the face is cut halfway out instead.
+  const auto faces = drawn_faces(strokes_box, stroke_points, options);
+  int face_count = 0;
+  for (const auto& axis : faces) face_count += axis[0] + axis[1];
+  // The kept solve cut at the strokes' box grown by `face_margin` on its faces (by confine_box
+  // elsewhere), when the surface reaches past that; whether the cut was kept.
   const auto draw_in = [&](double face_margin) {
-    const BoundingBox tight = drawn_in_box(strokes_box, stroke_points, options, face_margin);
+    BoundingBox tight = within;
+    for (int a = 0; a < 3; ++a) {
+      if (faces[a][0]) tight.min[a] = strokes_box.min[a] - face_margin;
+      if (faces[a][1]) tight.max[a] = strokes_box.max[a] + face_margin;
+    }
     const auto reaches_past = [&](const TriangleArrays& mesh) {
       for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
         if ((mesh.V.row(i).array() < tight.min.transpose().array()).any() ||
@@ -1021,17 +1024,12 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
           return true;
       return false;
     };
-    const bool drawn = (tight.min.array() != within.min.array()).any() ||
-                       (tight.max.array() != within.max.array()).any();
-    if (!drawn || kept.mesh.F.rows() == 0 || !reaches_past(kept.mesh) ||
-        !try_cut([&](ConfinedField& g) { g.set_within(tight); }))
-      return false;
-    for (int a = 0; a < 3; ++a)
-      r.box_drawn_in += (tight.min[a] > within.min[a]) + (tight.max[a] < within.max[a]);
-    return true;
+    return face_margin < options.confine_box && kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
+           try_cut([&](ConfinedField& g) { g.set_within(tight); });
   };
-  if (r.confine_radius > 0.0 && options.confine_box_tight > 0.0 && !draw_in(options.confine_box_tight))
-    draw_in(0.5 * (options.confine_box_tight + options.confine_box));
+  if (r.confine_radius > 0.0 && options.confine_box_tight > 0.0 && face_count > 0 &&
+      (draw_in(options.confine_box_tight) || draw_in(0.5 * (options.confine_box_tight + options.confine_box))))
+    r.box_drawn_in = face_count;
   r.lambda = kept.lambda;
   r.windows = kept.windows;
   r.bridges = kept.bridges;

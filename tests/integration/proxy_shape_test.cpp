@@ -312,6 +312,14 @@ TEST(ProxyShape, ThinPlateIsNotInflated) {
   EXPECT_EQ(topology.genus, 0);
 }
 
+// How far the proxy reaches past the strokes' bounding box, on its farthest side.
+double farthest_past_strokes_box(const Made& m) {
+  const BoundingBox strokes = m.sketch.bounding_box();
+  BoundingBox proxy;
+  for (const auto v : m.proxy.vertices()) proxy.extend(to_eigen(m.proxy.point(v)));
+  return std::max((proxy.max - strokes.max).maxCoeff(), (strokes.min - proxy.min).maxCoeff());
+}
+
 // A face drawn at the strokes' extreme (a box's side, a plate's face) is cut by the box round the
 // strokes; drawn in after the choice of smoothing, the cut lies on them, not two hundredths (or
 // two thousandths) of the diagonal out, and no area is left on the check's box there.
@@ -334,10 +342,7 @@ TEST(ProxyShape, FacesAtTheStrokesExtremeAreCutCloseToThem) {
 TEST(ProxyShape, BlobsReachingPastTheirStrokesAreNotFlattened) {
   const Made m = proxy_of("metaballs", vr_style(3));
   EXPECT_EQ(m.report.box_drawn_in, 0);
-  BoundingBox strokes = m.sketch.bounding_box(), proxy;
-  for (const auto v : m.proxy.vertices()) proxy.extend(to_eigen(m.proxy.point(v)));
-  const double past = std::max((proxy.max - strokes.max).maxCoeff(), (strokes.min - proxy.min).maxCoeff());
-  EXPECT_GT(past, 0.011 * strokes.diagonal()) << "the surface past a side";
+  EXPECT_GT(farthest_past_strokes_box(m), 0.011 * m.sketch.bounding_box().diagonal()) << "the surface past a side";
 }
 
 // Where drawing the box in would pierce the surface (a wineglass's thin foot, drawn in vr, whose
@@ -357,11 +362,7 @@ TEST(ProxyShape, ACutThatWouldPierceIsMadeHalfwayOut) {
   EXPECT_EQ(m.report.box_drawn_in, 2);
   EXPECT_EQ(m.topology.genus, 0);
   EXPECT_EQ(m.topology.components, 1u);
-  const BoundingBox strokes = m.sketch.bounding_box();
-  BoundingBox proxy;
-  for (const auto v : m.proxy.vertices()) proxy.extend(to_eigen(m.proxy.point(v)));
-  const double past = std::max((proxy.max - strokes.max).maxCoeff(), (strokes.min - proxy.min).maxCoeff());
-  EXPECT_LT(past, 0.0105 * strokes.diagonal()) << "the surface past a side";
+  EXPECT_LT(farthest_past_strokes_box(m), 0.0105 * m.sketch.bounding_box().diagonal()) << "the surface past a side";
   EXPECT_EQ(check_shape(m.proxy, {}, m.sketch, false).outside_box, 0.0);
 }
 
