@@ -82,6 +82,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"prepare.consolidate", setter([](Params& p) -> auto& { return p.prepare.consolidate; })},
       {"prepare.consolidation_radius", setter([](Params& p) -> auto& { return p.prepare.consolidation.radius; })},
       {"prepare.ignore_decorations", setter([](Params& p) -> auto& { return p.prepare.ignore_decorations; })},
+      {"prepare.decoration_dot", setter([](Params& p) -> auto& { return p.prepare.decorations.dot; })},
       {"prepare.decoration_tubes", setter([](Params& p) -> auto& { return p.prepare.decoration_tubes; })},
       {"prepare.tube_radius", setter([](Params& p) -> auto& { return p.prepare.tubes.radius; })},
       {"prepare.tube_max_radius", setter([](Params& p) -> auto& { return p.prepare.tubes.max_radius; })},

@@ -42,6 +42,15 @@ double middle_taken(const Stroke& stroke, double share, const Free& free) {
 
 }  // namespace
 
+const char* decoration_kind_name(DecorationKind kind) {
+  switch (kind) {
+    case DecorationKind::SmallGroup: return "small group";
+    case DecorationKind::Dangling: return "dangling";
+    case DecorationKind::Dot: return "dot";
+  }
+  return "";
+}
+
 bool DecorationOptions::valid(std::string* why) const {
   const auto fail = [&](const char* message) {
     if (why) *why = message;
@@ -53,6 +62,7 @@ bool DecorationOptions::valid(std::string* why) const {
   if (!(min_dangling >= 0.0)) return fail("decorations.min_dangling must be >= 0");
   if (!(free_end > touch && free_end < 1.0)) return fail("decorations.free_end must be in (touch, 1)");
   if (!(carried >= 0.0 && carried < 1.0)) return fail("decorations.carried must be in [0, 1)");
+  if (!(dot >= 0.0 && dot < 1.0)) return fail("decorations.dot must be in [0, 1)");
   return true;
 }
 
@@ -134,7 +144,7 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
     return true;
   };
 
-  std::vector<char> small(n, 0), dangling(n, 0);
+  std::vector<char> small(n, 0), dangling(n, 0), dot(n, 0);
   const double free = options.free_end * diagonal;
   std::vector<std::size_t> group;
   for (std::size_t s = 0; s < n; ++s) {
@@ -143,6 +153,10 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
     const std::size_t g = find_root(parent, s);
     if (g != largest && group_box[g].diagonal() < options.small_group * diagonal) {
       small[s] = 1;
+      continue;
+    }
+    if (stroke.length() < options.dot * diagonal) {
+      dot[s] = 1;
       continue;
     }
     if (stroke.length() < options.min_dangling * diagonal) continue;
@@ -180,6 +194,7 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
     if (stroke.ignored || stroke.boundary) continue;
     if (small[s]) out.push_back({s, stroke.id, DecorationKind::SmallGroup});
     else if (dangling[s]) out.push_back({s, stroke.id, DecorationKind::Dangling});
+    else if (dot[s]) out.push_back({s, stroke.id, DecorationKind::Dot});
   }
   return out;
 }

@@ -1,5 +1,6 @@
 #pragma once
-// Strokes that depict no surface: a dot or a small scribble apart from the rest, a single stroke
+// Strokes that depict no surface: a dot or a small scribble apart from the rest, a dot anywhere
+// (a tap of the trigger: too short to show the surface's direction), a single stroke
 // that hangs off the sketch by one end (an antenna, a cable, a stem), possibly carrying a small
 // group at its free end (a cable's plug, a ring on a string). Left in, each becomes a blob, a horn
 // or a fin of the surface; so they are found before surfacing and marked ignored.
@@ -25,11 +26,18 @@ struct DecorationOptions {
   double carried = 0.15;       ///< strokes that touch a one-end stroke away from that end and
                                ///< reach the rest only through it (a cable's plug) go with it when
                                ///< their extent is below this and half the stroke's length
+  double dot = 0.01;           ///< a stroke shorter than this depicts no surface wherever it lies:
+                               ///< a tap, under one cell of the proxy's grid, draws no curve and
+                               ///< shows no direction, yet the segmentation would take it for a
+                               ///< curve on the surface (0 = off)
   bool valid(std::string* why) const;
 };
 
 /// Why a stroke was found to depict no surface.
-enum class DecorationKind { SmallGroup, Dangling };
+enum class DecorationKind { SmallGroup, Dangling, Dot };
+
+/// The kind's name in reports: "small group", "dangling" or "dot".
+const char* decoration_kind_name(DecorationKind kind);
 
 /// One stroke that find_decorations() would ignore.
 struct Decoration {
@@ -39,7 +47,8 @@ struct Decoration {
 };
 
 /// The strokes of `sketch` that depict no surface: members of a small group of touching strokes
-/// apart from the largest group (dots, small scribbles); strokes longer than min_dangling that
+/// apart from the largest group (dots, small scribbles); the other strokes shorter than `dot`
+/// (kind Dot); strokes longer than min_dangling that
 /// touch the others by at most one end while the other end is free_end away from them (closed
 /// strokes excepted); and the small group such a stroke carries, when the strokes it touches away
 /// from its attached end reach the rest only through it and at most half of the stroke's

@@ -39,7 +39,7 @@ nlohmann::json checks_json(const ShapeChecks& c) {
 nlohmann::json decorations_json(const std::vector<Decoration>& decorations) {
   nlohmann::json out = nlohmann::json::array();
   for (const Decoration& d : decorations)
-    out.push_back({{"id", d.id}, {"kind", d.kind == DecorationKind::SmallGroup ? "small group" : "dangling"}});
+    out.push_back({{"id", d.id}, {"kind", decoration_kind_name(d.kind)}});
   return out;
 }
 

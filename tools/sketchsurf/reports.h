@@ -17,7 +17,7 @@ nlohmann::json models_json(const Segmentation& segmentation);
 /// self_intersections, regions, border_length, border_ratio, warnings}.
 nlohmann::json checks_json(const ShapeChecks& checks);
 
-/// The strokes ignored as decorations: [{id, kind: "small group" | "dangling"}].
+/// The strokes ignored as decorations: [{id, kind: "small group" | "dangling" | "dot"}].
 nlohmann::json decorations_json(const std::vector<Decoration>& decorations);
 /// Rims made boundary strokes: stroke id, the normal through the opening, centre and radius.
 nlohmann::json openings_json(const std::vector<Opening>& openings);

@@ -56,7 +56,9 @@ void note_decorations(const GlobalOptions& global, const std::string& file,
             << " stroke(s) that depict no surface (id";
   for (const Decoration& d : decorations)
     std::cerr << " " << d.id
-              << (d.kind == DecorationKind::SmallGroup ? " (small group apart)" : " (hangs by one end)");
+              << (d.kind == DecorationKind::SmallGroup ? " (small group apart)"
+                  : d.kind == DecorationKind::Dangling ? " (hangs by one end)"
+                                                       : " (a dot)");
   if (tubes > 0)
     std::cerr << "), drawn as " << tubes << " thin tube(s) apart from the surface\n";
   else

@@ -1,5 +1,6 @@
-// Strokes that depict no surface: an antenna hanging by one end and a dot apart are found; the
-// strokes of curve networks, with exact or imprecise junctions, and closed outlines are not.
+// Strokes that depict no surface: an antenna hanging by one end, a dot apart and a dot touching
+// the object are found; the strokes of curve networks, with exact or imprecise junctions, short
+// strokes longer than a dot and closed outlines are not.
 
 #include <gtest/gtest.h>
 
@@ -110,6 +111,22 @@ TEST(Decorations, ADotApartIsFoundAndAClosedOutlineOnAFaceIsNot) {
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(found[0].stroke, s.strokes.size() - 2);
   EXPECT_EQ(found[0].kind, DecorationKind::SmallGroup);
+}
+
+TEST(Decorations, ADotTouchingTheObjectIsFoundAndAShortStrokeIsNot) {
+  // The cube's diagonal is sqrt(3): a dot is under 0.017 long. Both strokes start on the top
+  // face's front edge, so they belong to the object's group.
+  Sketch sketch = testing::cube_sketch();
+  sketch.strokes.push_back(segment(V3(0.0, 0.5, 0.5), V3(0.0, 0.49, 0.49)));  // 0.014: a dot
+  sketch.strokes.push_back(segment(V3(0.2, 0.5, 0.5), V3(0.2, 0.5, 0.47)));   // 0.03: a tick
+  const Sketch s = prepared(sketch);
+  const auto found = find_decorations(s);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].stroke, s.strokes.size() - 2);
+  EXPECT_EQ(found[0].kind, DecorationKind::Dot);
+  DecorationOptions off;
+  off.dot = 0.0;
+  EXPECT_TRUE(find_decorations(s, off).empty());
 }
 
 TEST(Decorations, StrokesTheUserMarkedAreLeftAlone) {
