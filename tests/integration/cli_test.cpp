@@ -139,12 +139,15 @@ TEST(Cli, ProxyParamsReachTheProxy) {
 }
 
 TEST(Cli, ProxyLeavesOutAStrokeThatDepictsNoSurfaceAsSurfaceDoes) {
-  // A sphere of radius 0.5 with an antenna from (0.5, 0, 0) to (1, 0, 0): the proxy command
-  // prepares the strokes as `surface` does, so the antenna is ignored, not wrapped in a horn.
+  // A sphere of radius 0.5 with an antenna from (0.5, 0, 0) to (1, 0, 0) and a tap on its top:
+  // the proxy command prepares the strokes as `surface` does, so the antenna is ignored, not
+  // wrapped in a horn, and the tap too.
   TempDir dir;
   Sketch sketch = testing::sphere_sketch(0.5, 4);
   sketch.strokes.push_back(testing::sample_curve(
       [](double t) { return Eigen::Vector3d(0.5 + 0.5 * t, 0.0, 0.0); }, 0.0, 1.0, 0.005));
+  sketch.strokes.push_back(testing::sample_curve(
+      [](double t) { return Eigen::Vector3d(0.004 * t, 0.5, 0.003 * t); }, 0.0, 1.0, 0.002));
   write_sketch(sketch, dir / "s.json");
   const auto reach = [&] {  // the proxy's largest x
     double x = -1.0;
@@ -157,11 +160,14 @@ TEST(Cli, ProxyLeavesOutAStrokeThatDepictsNoSurfaceAsSurfaceDoes) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_LT(reach(), 0.55);
   EXPECT_GT(reach(), 0.45);
-  EXPECT_NE(r.err.find("note: ignored 1 stroke(s) that depict no surface"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("note: ignored 2 stroke(s) that depict no surface"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(hangs by one end)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(a dot)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--keep-all-strokes keeps them"), std::string::npos) << r.err;
   const auto report = nlohmann::json::parse(testing::read_text(dir / "r.json"));
-  ASSERT_EQ(report["decorations"].size(), 1u);
+  ASSERT_EQ(report["decorations"].size(), 2u);
   EXPECT_EQ(report["decorations"][0]["kind"], "dangling");
+  EXPECT_EQ(report["decorations"][1]["kind"], "dot");
   // Kept, the antenna is fitted: the surface reaches out along it.
   r = run_cli(dir, {"-q", "proxy", (dir / "s.json").string(), "-o", (dir / "p.ply").string(),
                     "--keep-all-strokes"});
