@@ -1024,10 +1024,11 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
           return true;
       return false;
     };
-    return face_margin < options.confine_box && kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
+    return kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
            try_cut([&](ConfinedField& g) { g.set_within(tight); });
   };
-  if (r.confine_radius > 0.0 && options.confine_box_tight > 0.0 && face_count > 0 &&
+  if (r.confine_radius > 0.0 && options.confine_box_tight > 0.0 &&
+      options.confine_box_tight < options.confine_box && face_count > 0 &&
       (draw_in(options.confine_box_tight) || draw_in(0.5 * (options.confine_box_tight + options.confine_box))))
     r.box_drawn_in = face_count;
   r.lambda = kept.lambda;

@@ -155,11 +155,12 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
       small[s] = 1;
       continue;
     }
-    if (stroke.length() < options.dot * diagonal) {
+    const double length = stroke.length();
+    if (length < options.dot * diagonal) {
       dot[s] = 1;
       continue;
     }
-    if (stroke.length() < options.min_dangling * diagonal) continue;
+    if (length < options.min_dangling * diagonal) continue;
     // A closed stroke (a rim, an outline drawn on a face) is never an antenna.
     if ((stroke.points.front() - stroke.points.back()).norm() < free) continue;
     if (touches[s].empty()) {
@@ -170,7 +171,7 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
     // Touching by one end, and the other end far from every stroke but those it carries: an
     // imprecise junction of a sparse curve network misses its neighbour by a little, an antenna
     // by a lot.
-    const double limit = std::min(options.carried * diagonal, 0.5 * stroke.length());
+    const double limit = std::min(options.carried * diagonal, 0.5 * length);
     const auto only_group = [&](const V3& p) {
       const std::vector<std::size_t> near = grid.strokes_near(p, s, free);
       return std::all_of(near.begin(), near.end(), [&](std::size_t t) {
