@@ -102,6 +102,8 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.lambda_min", setter([](Params& p) -> auto& { return p.proxy.lambda_min; })},
       {"proxy.lambda_max", setter([](Params& p) -> auto& { return p.proxy.lambda_max; })},
       {"proxy.lambda_step", setter([](Params& p) -> auto& { return p.proxy.lambda_step; })},
+      {"proxy.clean_gap", setter([](Params& p) -> auto& { return p.proxy.clean_gap; })},
+      {"proxy.clean_crossings", setter([](Params& p) -> auto& { return p.proxy.clean_crossings; })},
       {"extract.smooth_fallback", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.enabled; })},
       {"extract.smooth_fallback_margin", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.margin; })},
       {"extract.back_side_gap", setter([](Params& p) -> auto& { return p.extract.back_sides.gap; })},

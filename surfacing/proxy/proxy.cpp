@@ -25,6 +25,7 @@
 #include "surfacing/proxy/remesh.h"
 #include "surfacing/proxy/saddles.h"
 #include "surfacing/proxy/sampling.h"
+#include "surfacing/sketch/crossings.h"
 #include "surfacing/sketch/io/sketch_io.h"
 
 namespace sketchsurf {
@@ -627,6 +628,8 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(lambda_min > 0.0 && lambda_max >= lambda_min && std::isfinite(lambda_max)))
     return fail("proxy lambda_min and lambda_max must satisfy 0 < lambda_min <= lambda_max");
   if (!(lambda_step > 1.0) || !std::isfinite(lambda_step)) return fail("proxy lambda_step must be > 1");
+  if (!(clean_gap >= 0.0 && clean_gap < 1.0)) return fail("proxy clean_gap must be in [0, 1)");
+  if (clean_crossings < 1) return fail("proxy clean_crossings must be at least 1");
   if (!(confine_margin > 0.0 && confine_margin < 1.0))
     return fail("proxy confine_margin must be in (0, 1)");
   if (!(confine_radius >= 0.0 && confine_radius < 1.0))
@@ -908,18 +911,24 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // thin parts (a chair's legs, seat and back, a lamp's arm, a mug's handle) it melts them into a
   // block or webs them to the body, with faces far from every stroke. The ladder's first weight is
   // solved only when the second's surface has at least far_tie of its area far (else the first
-  // could not be kept): most sketches need the second's smoothing.
+  // could not be kept): most sketches need the second's smoothing. A clean curve network starts
+  // at the first: its strokes lie on the surface, and the second's smoothing rounds its shape.
   const std::vector<double> ladder = lambda_ladder(options);
+  // Pairs of strokes closer than this (unit frame) are looked at, and those whose directions there
+  // are more than this apart (radians) cross: any reach of a few tremor amplitudes will do.
+  constexpr double kCrossReach = 0.02, kCrossAngle = M_PI / 6.0;
+  r.crossing_gap = crossing_gap(unit, kCrossReach, kCrossAngle, static_cast<std::size_t>(options.clean_crossings));
+  const bool clean = r.crossing_gap >= 0.0 && r.crossing_gap < options.clean_gap;
   Candidate kept;
   const auto consider = [&](Candidate c) {
     const bool kept_better = kept.far + options.far_tie <= c.far && kept.far <= options.far_most &&
                              kept.genus <= c.genus + options.far_extra_genus;
     if (kept.mesh.F.rows() == 0 || (c.mesh.F.rows() > 0 && !kept_better)) kept = std::move(c);
   };
-  for (std::size_t i = ladder.size() > 1 ? 1 : 0; i < ladder.size(); ++i) {
+  for (std::size_t i = ladder.size() > 1 && !clean ? 1 : 0; i < ladder.size(); ++i) {
     Candidate c = solve(ladder[i]);
     const bool closed = c.vipss->summary.closed;
-    if (i == 1 && c.mesh.F.rows() > 0 && c.far >= options.far_tie) consider(solve(ladder[0]));
+    if (i == 1 && !clean && c.mesh.F.rows() > 0 && c.far >= options.far_tie) consider(solve(ladder[0]));
     consider(std::move(c));
     if (closed) break;
   }

@@ -28,6 +28,14 @@ struct ProxyOptions {
                                ///< that leaves at least far_tie of the surface far from the strokes
   double lambda_max = 1e-3;    ///< last smoothing weight tried when lambda < 0
   double lambda_step = 10.0;   ///< factor between the smoothing weights tried
+  double clean_gap = 1e-4;     ///< the ladder starts at its first weight when the strokes are a
+                               ///< clean curve network: where they cross, they pass at a median
+                               ///< distance below this (fraction of diagonal; 0 = never) from
+                               ///< each other (a mesh's feature curves and sections, a modelling
+                               ///< tool's network: rounding; a hand's strokes: its tremor, 0.1%
+                               ///< and more). Such strokes lie on the surface and need no
+                               ///< smoothing; the second weight rounds a smooth shape's bulges
+  int clean_crossings = 8;     ///< ... and at least this many pairs of strokes cross
   double far_distance = 0.05;  ///< when no weight of the ladder is confined, the largest is kept
                                ///< unless a smaller one's polygonised surface has less area
                                ///< farther than this from every stroke (fraction of diagonal) ...
@@ -197,6 +205,8 @@ struct ProxyReport {
   MeshTopology topology;
   VipssSummary vipss;             ///< automatic proxy only: the kept solve
   double lambda = 0.0;            ///< automatic proxy: the smoothing weight used
+  double crossing_gap = -1.0;     ///< automatic proxy: the strokes' median distance where they
+                                  ///< cross (fraction of diagonal; < 0: too few crossings)
   double far_area = 0.0;          ///< automatic proxy: area fraction of the kept solve's surface
                                   ///< (or of the loft) farther than far_distance from every stroke
   double missed_strokes = 0.0;    ///< automatic proxy: fraction of the stroke points farther than

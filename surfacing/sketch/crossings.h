@@ -5,6 +5,8 @@
 // surface, so such a scene can be refused before any surfacing work; unlike the result's distance
 // to the strokes it does not change from one run to the next.
 
+#include <cstddef>
+
 #include "surfacing/sketch/sketch.h"
 
 namespace sketchsurf {
@@ -15,5 +17,13 @@ namespace sketchsurf {
 /// other, side by side, do not meet). Strokes are resampled every reach / 2. 0 for a sketch without
 /// ink.
 double unmet_share(const Sketch& sketch, double reach, double angle);
+
+/// How far apart strokes pass where they cross: the median, over the pairs of strokes that come
+/// within `reach` of each other crosswise (directions there more than `angle` radians apart, and
+/// neither stroke ending there), of the pair's closest distance (same units as the sketch). A
+/// curve network drawn on a surface (a modelling tool's, a mesh's feature curves and sections)
+/// crosses exactly: its gaps are rounding; strokes drawn by hand pass each other by the hand's
+/// tremor. Negative when fewer than `least` pairs cross.
+double crossing_gap(const Sketch& sketch, double reach, double angle, std::size_t least);
 
 }  // namespace sketchsurf

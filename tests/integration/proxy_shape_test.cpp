@@ -210,6 +210,24 @@ TEST(ProxyShape, TorusKeepsItsHole) {
   expect_within_strokes(m, 0.05);
 }
 
+// A clean curve network (every stroke on the surface, crossings exact) is not smoothed: the
+// metaballs' bulges between their sections keep their shape. Drawn mid-air, the same strokes pass
+// each other by the hand's tremor and are smoothed.
+TEST(ProxyShape, ACleanCurveNetworkOfBlobsIsNotSmoothedAway) {
+  const TriMesh& truth = testing::truth_shape("metaballs").mesh;
+  const Made net = proxy_of("metaballs");
+  EXPECT_GE(net.report.crossing_gap, 0.0);
+  EXPECT_LT(net.report.crossing_gap, ProxyOptions{}.clean_gap);
+  EXPECT_EQ(net.report.lambda, ProxyOptions{}.lambda_min);
+  // Bounds that the surface smoothed from the ladder's second weight exceeds.
+  const Evaluation e = evaluate(net.proxy, truth);
+  EXPECT_LT(e.accuracy.median, 0.0002);
+  EXPECT_LT(e.accuracy.p95, 0.0013);
+  const Made vr = proxy_of("metaballs", vr_style(1));
+  EXPECT_GT(vr.report.crossing_gap, 5.0 * ProxyOptions{}.clean_gap);
+  EXPECT_GT(vr.report.lambda, ProxyOptions{}.lambda_min);
+}
+
 TEST(ProxyShape, TwoNearbySpheresStayApart) {
   const Made m = proxy_of("two_spheres");
   EXPECT_EQ(m.topology.components, 2u);

@@ -133,6 +133,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                   {"cleaning", rep.cleaning.messages}}},
       {"proxy", {{"user", rep.user_proxy}, {"vertices", r.proxy.n_vertices()}, {"faces", r.proxy.n_faces()},
                  {"genus", rep.proxy.topology.genus}, {"lambda", rep.proxy.lambda},
+                 {"crossing_gap", rep.proxy.crossing_gap},
                  {"far_area", rep.proxy.far_area}, {"missed_strokes", rep.proxy.missed_strokes},
                  {"confine_radius", rep.proxy.confine_radius},
                  {"outline_cut", rep.proxy.outline_cut}, {"box_drawn_in", rep.proxy.box_drawn_in},

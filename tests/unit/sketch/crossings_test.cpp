@@ -1,6 +1,7 @@
 // Strokes that meet no other stroke: a curve network (a cube's edges and sections) has none, or few
 // when drawn over, a hatching scene (short parallel strokes in groups) is all of them; a stroke met
-// only by strokes along it, or only farther than the reach, is unmet.
+// only by strokes along it, or only farther than the reach, is unmet. Where strokes cross, the
+// distance between them: exact for lines that meet, the offset for lines that pass each other.
 
 #include <gtest/gtest.h>
 
@@ -51,6 +52,33 @@ TEST(Crossings, StrokesMeetCrosswiseWithinTheReach) {
   EXPECT_NEAR(unmet_share(sketch, kReach, kAngle), 0.4 / 4.4, 1e-3);
   sketch.strokes.back().ignored = true;
   EXPECT_EQ(unmet_share(sketch, kReach, kAngle), 0.0);
+}
+
+// Two long lines crossing at right angles, the second lifted by `lift` and turned by `turn`
+// radians about the z axis, each a polyline of segments far longer than the reach.
+Sketch crossing_pair(double lift, double turn) {
+  return two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(std::sin(turn), -std::cos(turn), lift),
+                   V3(-std::sin(turn), std::cos(turn), lift));
+}
+
+TEST(Crossings, TheGapWhereStrokesCrossIsTheirDistanceThere) {
+  EXPECT_NEAR(crossing_gap(crossing_pair(0.0, 0.3), kReach, kAngle, 1), 0.0, 1e-15);
+  EXPECT_NEAR(crossing_gap(crossing_pair(0.004, 0.3), kReach, kAngle, 1), 0.004, 1e-12);
+  EXPECT_NEAR(crossing_gap(crossing_pair(-0.007, -0.5), kReach, kAngle, 1), 0.007, 1e-12);
+  // Farther apart than the reach, or too few crossings: no measure.
+  EXPECT_LT(crossing_gap(crossing_pair(0.02, 0.0), kReach, kAngle, 1), 0.0);
+  EXPECT_LT(crossing_gap(crossing_pair(0.0, 0.0), kReach, kAngle, 2), 0.0);
+  // Side by side (at 20 degrees, under the angle), or one ending on the other (a T): no crossing.
+  EXPECT_LT(crossing_gap(crossing_pair(0.0, M_PI / 2.0 - 20.0 * M_PI / 180.0), kReach, kAngle, 1), 0.0);
+  EXPECT_LT(crossing_gap(two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(0, 0, 0), V3(0, 1, 0)), kReach, kAngle, 1),
+            0.0);
+  // The median over the crossing pairs: three lines lifted 0.001, 0.002 and 0.006 across a fourth.
+  Sketch sketch = crossing_pair(0.001, 0.0);
+  for (const double lift : {0.002, 0.006})
+    sketch.strokes.push_back(line(V3(0.5 * lift * 100, -1, lift), V3(0.5 * lift * 100, 1, lift)));
+  EXPECT_NEAR(crossing_gap(sketch, kReach, kAngle, 3), 0.002, 1e-12);
+  sketch.strokes.back().ignored = true;
+  EXPECT_LT(crossing_gap(sketch, kReach, kAngle, 3), 0.0);
 }
 
 }  // namespace
