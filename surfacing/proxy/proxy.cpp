@@ -227,6 +227,7 @@ class ConfinedField {
   void set_outline(const Outline* outline) { outline_ = outline; }
   void set_radius(double radius) { radius_ = radius; }
   void set_within(const BoundingBox& within) { within_ = within; }
+  void set_planes(std::vector<Plane> planes) { planes_ = std::move(planes); }
 
   // g at p and the Newton step that moves p onto g = 0 to first order (value_from() gives g
   // alone).
@@ -276,6 +277,13 @@ class ConfinedField {
           if (away) *away = side * Eigen::Vector3d::Unit(a);
         }
       }
+    for (const Plane& plane : planes_) {  // slanted faces: signed distance outside each
+      const double wall = plane.signed_distance(p);
+      if (wall > c) {
+        c = wall;
+        if (away) *away = plane.normal;
+      }
+    }
     return c;
   }
   // True when g at a point whose cap is `c` does not depend on f: outside whatever f says.
@@ -298,6 +306,7 @@ class ConfinedField {
   const PointGrid& grid_;  // over strokes_
   double radius_;
   BoundingBox within_;
+  std::vector<Plane> planes_;
   double band_;
   const Outline* outline_ = nullptr;
   std::vector<Bump> bumps_;
@@ -612,6 +621,90 @@ std::array<std::array<bool, 2>, 3> drawn_faces(const BoundingBox& strokes_box, c
                        near.max[v] - near.min[v] >= options.confine_box_span * width[v];
     }
   return faces;
+}
+
+// The strokes' supporting planes, other than the box's sides, where the strokes draw a face: a
+// wedge's slope, a roof's pitch. Searched from directions spread over the sphere: the plane
+// farthest along a direction (all points on its inner side), fitted again to the points within
+// confine_box of it until it settles. A face when strokes run along it, each over at least half
+// of confine_box_span of the points' extent along the plane's longer principal direction, and
+// those runs span at least confine_box_span of that extent along both principal directions. A
+// smooth shape's supporting plane only touches it: the strokes over a dome or a lobe stay near it
+// for a short arc, and the surface between them bulges past it. Planes within a few degrees of an
+// axis are the box's sides (drawn_faces).
+std::vector<Plane> drawn_planes(const Sketch& unit, const ProxyOptions& options) {
+  constexpr int kDirections = 256, kRefits = 4;
+  const double axis_near = portable::cos(5.0 * M_PI / 180.0), same = portable::cos(2.0 * M_PI / 180.0);
+  std::vector<Plane> planes;
+  std::size_t count = 0;
+  for (const Stroke& stroke : unit.strokes) count += stroke.size();
+  if (count < 3) return planes;
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(count), 3);
+  std::vector<std::size_t> starts;  // each stroke's first row
+  for (Eigen::Index i = 0; const Stroke& stroke : unit.strokes) {
+    starts.push_back(static_cast<std::size_t>(i));
+    for (const Eigen::Vector3d& p : stroke.points) points.row(i++) = p.transpose();
+  }
+  starts.push_back(count);
+  const auto support = [&](const Eigen::Vector3d& n) { return (points * n).maxCoeff(); };
+  const auto extent = [](const Eigen::VectorXd& x) { return x.maxCoeff() - x.minCoeff(); };
+  for (int k = 0; k < kDirections; ++k) {
+    // Fibonacci sphere: evenly spread, the same on every machine.
+    const double z = 1.0 - (2.0 * k + 1.0) / kDirections, r = std::sqrt(1.0 - z * z);
+    const double phi = k * M_PI * (3.0 - std::sqrt(5.0));
+    Plane plane{Eigen::Vector3d(r * portable::cos(phi), r * portable::sin(phi), z), 0.0};
+    std::vector<char> in(count, 0);
+    Eigen::Vector3d first, second;
+    Eigen::Index near = 0;
+    for (int refit = 0; refit < kRefits; ++refit) {
+      plane.offset = -support(plane.normal);
+      const Eigen::VectorXd gap = -plane.offset - (points * plane.normal).array();
+      near = 0;
+      for (std::size_t i = 0; i < count; ++i) near += in[i] = gap[static_cast<Eigen::Index>(i)] <= options.confine_box;
+      if (near < 3) break;
+      Eigen::MatrixX3d band(near, 3);
+      for (Eigen::Index i = 0, j = 0; i < points.rows(); ++i)
+        if (in[static_cast<std::size_t>(i)]) band.row(j++) = points.row(i);
+      const Eigen::RowVector3d mean = band.colwise().mean();
+      const Eigen::Matrix3d cov = (band.rowwise() - mean).transpose() * (band.rowwise() - mean);
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+      Eigen::Vector3d n = eig.eigenvectors().col(0);
+      if (n.dot(plane.normal) < 0.0) n = -n;
+      plane.normal = n;
+      second = eig.eigenvectors().col(1);
+      first = eig.eigenvectors().col(2);
+    }
+    if (near < 3 || plane.normal.cwiseAbs().maxCoeff() >= axis_near) continue;
+    plane.offset = -support(plane.normal);
+    // The runs of consecutive stroke points within the band, the long ones kept.
+    const double run_least = 0.5 * options.confine_box_span * extent(points * first);
+    std::vector<Eigen::Index> kept;
+    for (std::size_t s = 0; s + 1 < starts.size(); ++s)
+      for (std::size_t i = starts[s]; i < starts[s + 1];) {
+        if (!in[i]) {
+          ++i;
+          continue;
+        }
+        std::size_t j = i + 1;
+        double length = 0.0;
+        for (; j < starts[s + 1] && in[j]; ++j)
+          length += (points.row(static_cast<Eigen::Index>(j)) - points.row(static_cast<Eigen::Index>(j - 1))).norm();
+        if (length >= run_least)
+          for (std::size_t q = i; q < j; ++q) kept.push_back(static_cast<Eigen::Index>(q));
+        i = j;
+      }
+    if (kept.size() < 3) continue;
+    const Eigen::MatrixX3d runs = points(kept, Eigen::all);
+    const auto spans = [&](const Eigen::Vector3d& e) {
+      return extent(runs * e) >= options.confine_box_span * extent(points * e);
+    };
+    if (!spans(first) || !spans(second)) continue;
+    const bool known = std::any_of(planes.begin(), planes.end(), [&](const Plane& q) {
+      return q.normal.dot(plane.normal) >= same && std::abs(q.offset - plane.offset) <= options.confine_box;
+    });
+    if (!known) planes.push_back(plane);
+  }
+  return planes;
 }
 
 }  // namespace
@@ -1040,6 +1133,24 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       options.confine_box_tight < options.confine_box && face_count > 0 &&
       (draw_in(options.confine_box_tight) || draw_in(0.5 * (options.confine_box_tight + options.confine_box))))
     r.box_drawn_in = face_count;
+  // The slanted faces the strokes draw (drawn_planes), cut close to their strokes in the same way
+  // where the surface reaches past them.
+  const std::vector<Plane> planes = drawn_planes(unit, options);
+  const auto cut_planes = [&](double face_margin) {
+    std::vector<Plane> moved = planes;
+    for (Plane& plane : moved) plane.offset -= face_margin;
+    const auto reaches_past = [&](const TriangleArrays& mesh) {
+      for (const Plane& plane : moved)
+        if (((mesh.V * plane.normal).array() + plane.offset > 0.0).any()) return true;
+      return false;
+    };
+    return kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
+           try_cut([&](ConfinedField& g) { g.set_planes(moved); });
+  };
+  if (r.confine_radius > 0.0 && options.confine_box_tight > 0.0 &&
+      options.confine_box_tight < options.confine_box && !planes.empty() &&
+      (cut_planes(options.confine_box_tight) || cut_planes(0.5 * (options.confine_box_tight + options.confine_box))))
+    r.planes_drawn_in = planes.size();
   r.lambda = kept.lambda;
   r.windows = kept.windows;
   r.bridges = kept.bridges;

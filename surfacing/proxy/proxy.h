@@ -214,6 +214,7 @@ struct ProxyReport {
   double confine_radius = 0.0;    ///< automatic proxy: R, fraction of diagonal (0: not confined)
   bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
   int box_drawn_in = 0;           ///< automatic proxy: sides of the box drawn in (confine_box_tight)
+  std::size_t planes_drawn_in = 0;  ///< automatic proxy: slanted faces drawn in the same way
   std::size_t loft_sections = 0;  ///< automatic proxy: the section loops it was lofted through
                                   ///< (0: VIPSS's surface)
   std::size_t windows = 0;        ///< automatic proxy: membrane bumps closing windows

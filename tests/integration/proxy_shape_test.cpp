@@ -228,6 +228,21 @@ TEST(ProxyShape, ACleanCurveNetworkOfBlobsIsNotSmoothedAway) {
   EXPECT_GT(vr.report.lambda, ProxyOptions{}.lambda_min);
 }
 
+// A wedge's slope is a face that the strokes draw, at no axis: it is cut on its strokes as the
+// box's sides are, and no bulb hangs past the acute edge. A mug's supporting planes only touch
+// its round body, along short arcs of its strokes: none is a drawn face.
+TEST(ProxyShape, AWedgesSlopeIsCutOnItsStrokes) {
+  const TriMesh& truth = testing::truth_shape("wedge").mesh;
+  for (const SynthOptions& style : {SynthOptions{}, vr_style(3)}) {
+    const Made m = proxy_of("wedge", style);
+    EXPECT_GE(m.report.planes_drawn_in, 1u);
+    const Evaluation e = evaluate(m.proxy, truth);
+    EXPECT_LT(e.accuracy.p95, 0.02);
+    EXPECT_LT(e.accuracy.max, 0.035);
+  }
+  EXPECT_EQ(proxy_of("mug").report.planes_drawn_in, 0u);
+}
+
 TEST(ProxyShape, TwoNearbySpheresStayApart) {
   const Made m = proxy_of("two_spheres");
   EXPECT_EQ(m.topology.components, 2u);

@@ -137,6 +137,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                  {"far_area", rep.proxy.far_area}, {"missed_strokes", rep.proxy.missed_strokes},
                  {"confine_radius", rep.proxy.confine_radius},
                  {"outline_cut", rep.proxy.outline_cut}, {"box_drawn_in", rep.proxy.box_drawn_in},
+                 {"planes_drawn_in", rep.proxy.planes_drawn_in},
                  {"loft_sections", rep.proxy.loft_sections},
                  {"window_bumps", rep.proxy.windows}, {"bridges", rep.proxy.bridges},
                  {"necks_cut", rep.proxy.necks}}},
