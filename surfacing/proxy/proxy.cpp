@@ -659,8 +659,8 @@ std::vector<Plane> drawn_planes(const Sketch& unit, const ProxyOptions& options)
     for (int refit = 0; refit < kRefits; ++refit) {
       plane.offset = -support(plane.normal);
       const Eigen::VectorXd gap = -plane.offset - (points * plane.normal).array();
-      near = 0;
-      for (std::size_t i = 0; i < count; ++i) near += in[i] = gap[static_cast<Eigen::Index>(i)] <= options.confine_box;
+      for (std::size_t i = 0; i < count; ++i) in[i] = gap[static_cast<Eigen::Index>(i)] <= options.confine_box;
+      near = std::count(in.begin(), in.end(), 1);
       if (near < 3) break;
       Eigen::MatrixX3d band(near, 3);
       for (Eigen::Index i = 0, j = 0; i < points.rows(); ++i)
@@ -687,8 +687,10 @@ std::vector<Plane> drawn_planes(const Sketch& unit, const ProxyOptions& options)
         }
         std::size_t j = i + 1;
         double length = 0.0;
-        for (; j < starts[s + 1] && in[j]; ++j)
-          length += (points.row(static_cast<Eigen::Index>(j)) - points.row(static_cast<Eigen::Index>(j - 1))).norm();
+        for (; j < starts[s + 1] && in[j]; ++j) {
+          const auto row = static_cast<Eigen::Index>(j);
+          length += (points.row(row) - points.row(row - 1)).norm();
+        }
         if (length >= run_least)
           for (std::size_t q = i; q < j; ++q) kept.push_back(static_cast<Eigen::Index>(q));
         i = j;
@@ -1010,7 +1012,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // Pairs of strokes closer than this (unit frame) are looked at, and those whose directions there
   // are more than this apart (radians) cross: any reach of a few tremor amplitudes will do.
   constexpr double kCrossReach = 0.02, kCrossAngle = M_PI / 6.0;
-  r.crossing_gap = crossing_gap(unit, kCrossReach, kCrossAngle, static_cast<std::size_t>(options.clean_crossings));
+  r.crossing_gap =
+      crossing_gap(unit, kCrossReach, kCrossAngle, static_cast<std::size_t>(options.clean_crossings));
   const bool clean = r.crossing_gap >= 0.0 && r.crossing_gap < options.clean_gap;
   Candidate kept;
   const auto consider = [&](Candidate c) {

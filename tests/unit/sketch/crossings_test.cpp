@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "surfacing/sketch/crossings.h"
 #include "tests/support/shapes.h"
@@ -74,8 +75,8 @@ TEST(Crossings, TheGapWhereStrokesCrossIsTheirDistanceThere) {
             0.0);
   // The median over the crossing pairs: three lines lifted 0.001, 0.002 and 0.006 across a fourth.
   Sketch sketch = crossing_pair(0.001, 0.0);
-  for (const double lift : {0.002, 0.006})
-    sketch.strokes.push_back(line(V3(0.5 * lift * 100, -1, lift), V3(0.5 * lift * 100, 1, lift)));
+  for (const auto& [x, lift] : {std::pair{0.1, 0.002}, std::pair{0.3, 0.006}})
+    sketch.strokes.push_back(line(V3(x, -1, lift), V3(x, 1, lift)));
   EXPECT_NEAR(crossing_gap(sketch, kReach, kAngle, 3), 0.002, 1e-12);
   sketch.strokes.back().ignored = true;
   EXPECT_LT(crossing_gap(sketch, kReach, kAngle, 3), 0.0);
