@@ -1132,13 +1132,16 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     return kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
            try_cut([&](ConfinedField& g) { g.set_within(tight); });
   };
-  if (r.confine_radius > 0.0 && options.confine_box_tight > 0.0 &&
-      options.confine_box_tight < options.confine_box && face_count > 0 &&
-      (draw_in(options.confine_box_tight) || draw_in(0.5 * (options.confine_box_tight + options.confine_box))))
-    r.box_drawn_in = face_count;
+  // Faces are drawn in on their strokes, else halfway out to the box; whether either cut was kept.
+  const bool faces_drawn_in = r.confine_radius > 0.0 && options.confine_box_tight > 0.0 &&
+                              options.confine_box_tight < options.confine_box;
+  const auto close_or_halfway = [&](auto&& cut) {
+    return cut(options.confine_box_tight) || cut(0.5 * (options.confine_box_tight + options.confine_box));
+  };
+  if (faces_drawn_in && face_count > 0 && close_or_halfway(draw_in)) r.box_drawn_in = face_count;
   // The slanted faces the strokes draw (drawn_planes), cut close to their strokes in the same way
   // where the surface reaches past them.
-  const std::vector<Plane> planes = drawn_planes(unit, options);
+  const std::vector<Plane> planes = faces_drawn_in ? drawn_planes(unit, options) : std::vector<Plane>{};
   const auto cut_planes = [&](double face_margin) {
     std::vector<Plane> moved = planes;
     for (Plane& plane : moved) plane.offset -= face_margin;
@@ -1150,10 +1153,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     return kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
            try_cut([&](ConfinedField& g) { g.set_planes(moved); });
   };
-  if (r.confine_radius > 0.0 && options.confine_box_tight > 0.0 &&
-      options.confine_box_tight < options.confine_box && !planes.empty() &&
-      (cut_planes(options.confine_box_tight) || cut_planes(0.5 * (options.confine_box_tight + options.confine_box))))
-    r.planes_drawn_in = planes.size();
+  if (!planes.empty() && close_or_halfway(cut_planes)) r.planes_drawn_in = planes.size();
   r.lambda = kept.lambda;
   r.windows = kept.windows;
   r.bridges = kept.bridges;
