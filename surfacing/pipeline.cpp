@@ -104,6 +104,8 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.lambda_step", setter([](Params& p) -> auto& { return p.proxy.lambda_step; })},
       {"proxy.clean_gap", setter([](Params& p) -> auto& { return p.proxy.clean_gap; })},
       {"proxy.clean_crossings", setter([](Params& p) -> auto& { return p.proxy.clean_crossings; })},
+      {"proxy.clean_points", setter([](Params& p) -> auto& { return p.proxy.clean_points; })},
+      {"proxy.clean_lambda", setter([](Params& p) -> auto& { return p.proxy.clean_lambda; })},
       {"extract.smooth_fallback", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.enabled; })},
       {"extract.smooth_fallback_margin", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.margin; })},
       {"extract.back_side_gap", setter([](Params& p) -> auto& { return p.extract.back_sides.gap; })},

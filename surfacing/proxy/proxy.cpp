@@ -725,6 +725,10 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(lambda_step > 1.0) || !std::isfinite(lambda_step)) return fail("proxy lambda_step must be > 1");
   if (!(clean_gap >= 0.0 && clean_gap < 1.0)) return fail("proxy clean_gap must be in [0, 1)");
   if (clean_crossings < 1) return fail("proxy clean_crossings must be at least 1");
+  if (clean_points < 10) return fail("proxy clean_points must be at least 10");
+  if (clean_points > 20000) return fail("proxy clean_points above 20000 need too much memory (n^2)");
+  if (!(clean_lambda >= 0.0 && clean_lambda < lambda_min))
+    return fail("proxy clean_lambda must be in [0, lambda_min)");
   if (!(confine_margin > 0.0 && confine_margin < 1.0))
     return fail("proxy confine_margin must be in (0, 1)");
   if (!(confine_radius >= 0.0 && confine_radius < 1.0))
@@ -833,6 +837,15 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   const Frame frame = stroke_frame(sketch);
   const Sketch unit = unit_strokes(sketch, frame);
 
+  // Where strokes cross, how far apart they pass: a clean curve network (a modelling tool's or a
+  // mesh's curves) lies on the surface, and is sampled more densely and smoothed less. Pairs of
+  // strokes closer than kCrossReach (unit frame) are looked at, and those whose directions there
+  // are more than kCrossAngle apart (radians) cross: any reach of a few tremor amplitudes will do.
+  constexpr double kCrossReach = 0.02, kCrossAngle = M_PI / 6.0;
+  r.crossing_gap =
+      crossing_gap(unit, kCrossReach, kCrossAngle, static_cast<std::size_t>(options.clean_crossings));
+  const bool clean = r.crossing_gap >= 0.0 && r.crossing_gap < options.clean_gap;
+
   auto t0 = Clock::now();
   progress.update("sampling strokes", 0.0);
   SamplingOptions sampling;
@@ -840,8 +853,14 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   sampling.spacing = options.sample_spacing;
   sampling.min_distance = std::min(options.sample_spacing, 0.5 * options.cell);
   const Eigen::MatrixX3d samples = sample_strokes(unit, sampling);
-  r.samples = static_cast<std::size_t>(samples.rows());
   check_encloses(samples);
+  // A clean network's first solve (clean_lambda) on denser samples: nearly interpolating, it
+  // follows the strokes between the samples only as closely as they lie.
+  Eigen::MatrixX3d dense;
+  if (clean && options.lambda < 0.0) {
+    sampling.count = options.clean_points;
+    dense = sample_strokes(unit, sampling);
+  }
   progress.update("sampling strokes", 1.0);
   r.sampling_seconds = seconds_since(t0);
 
@@ -876,7 +895,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     TriangleArrays mesh;
     double lambda = 0.0, far = 0.0;
     long genus = 0;
-    std::size_t components = 0, evaluations = 0;
+    std::size_t samples = 0, components = 0, evaluations = 0;
     std::size_t windows = 0, bridges = 0, necks = 0;  // bumps kept
     std::vector<Bump> undrawn;  // membranes over the wider windows no stroke depicts, not applied
   };
@@ -951,17 +970,18 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       closed += found.thin.size();
     return closed;
   };
-  const auto solve = [&](double lambda) {
+  const auto solve = [&](double lambda, const Eigen::MatrixX3d& at) {
     auto t = Clock::now();
     Candidate c;
     vipss_options.lambda = lambda;
-    c.vipss = std::make_unique<VipssResult>(solve_vipss(samples, vipss_options, progress));
+    c.vipss = std::make_unique<VipssResult>(solve_vipss(at, vipss_options, progress));
     c.lambda = lambda;
+    c.samples = static_cast<std::size_t>(at.rows());
     ++r.vipss_solves;
     r.vipss_seconds += seconds_since(t);
     t = Clock::now();
     c.field = std::make_unique<ConfinedField>(c.vipss->function,
-                                              distance_scale(c.vipss->function, samples, box),
+                                              distance_scale(c.vipss->function, at, box),
                                               stroke_points, stroke_grid, r.confine_radius, within,
                                               2.0 * options.cell);
     c.rbf = std::make_unique<GridMemo>(box.min, options.cell);
@@ -1007,14 +1027,10 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // block or webs them to the body, with faces far from every stroke. The ladder's first weight is
   // solved only when the second's surface has at least far_tie of its area far (else the first
   // could not be kept): most sketches need the second's smoothing. A clean curve network starts
-  // at the first: its strokes lie on the surface, and the second's smoothing rounds its shape.
-  const std::vector<double> ladder = lambda_ladder(options);
-  // Pairs of strokes closer than this (unit frame) are looked at, and those whose directions there
-  // are more than this apart (radians) cross: any reach of a few tremor amplitudes will do.
-  constexpr double kCrossReach = 0.02, kCrossAngle = M_PI / 6.0;
-  r.crossing_gap =
-      crossing_gap(unit, kCrossReach, kCrossAngle, static_cast<std::size_t>(options.clean_crossings));
-  const bool clean = r.crossing_gap >= 0.0 && r.crossing_gap < options.clean_gap;
+  // at clean_lambda, below the first: its strokes lie on the surface, and any smoothing rounds its
+  // shape off them.
+  std::vector<double> ladder = lambda_ladder(options);
+  if (dense.rows() > 0) ladder.insert(ladder.begin(), options.clean_lambda);
   Candidate kept;
   const auto consider = [&](Candidate c) {
     const bool kept_better = kept.far + options.far_tie <= c.far && kept.far <= options.far_most &&
@@ -1022,9 +1038,10 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (kept.mesh.F.rows() == 0 || (c.mesh.F.rows() > 0 && !kept_better)) kept = std::move(c);
   };
   for (std::size_t i = ladder.size() > 1 && !clean ? 1 : 0; i < ladder.size(); ++i) {
-    Candidate c = solve(ladder[i]);
+    Candidate c = solve(ladder[i], i == 0 && dense.rows() > 0 ? dense : samples);
     const bool closed = c.vipss->summary.closed;
-    if (i == 1 && !clean && c.mesh.F.rows() > 0 && c.far >= options.far_tie) consider(solve(ladder[0]));
+    if (i == 1 && !clean && c.mesh.F.rows() > 0 && c.far >= options.far_tie)
+      consider(solve(ladder[0], samples));
     consider(std::move(c));
     if (closed) break;
   }
@@ -1155,6 +1172,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   };
   if (!planes.empty() && close_or_halfway(cut_planes)) r.planes_drawn_in = planes.size();
   r.lambda = kept.lambda;
+  r.samples = kept.samples;
   r.windows = kept.windows;
   r.bridges = kept.bridges;
   r.necks = kept.necks;

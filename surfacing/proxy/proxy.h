@@ -36,6 +36,13 @@ struct ProxyOptions {
                                ///< and more). Such strokes lie on the surface and need no
                                ///< smoothing; the second weight rounds a smooth shape's bulges
   int clean_crossings = 8;     ///< ... and at least this many pairs of strokes cross
+  double clean_lambda = 1e-6;  ///< a clean curve network's ladder starts at this weight, below
+                               ///< lambda_min (0 = interpolate), then goes on from lambda_min
+                               ///< until the zero set is confined
+  std::size_t clean_points = 1000;  ///< that first solve's sample count: nearly interpolating, the
+                                    ///< surface follows the strokes between the samples only as
+                                    ///< closely as they lie (400: a car's body, a cow's face off
+                                    ///< their strokes); the ladder's other weights keep `points`
   double far_distance = 0.05;  ///< when no weight of the ladder is confined, the largest is kept
                                ///< unless a smaller one's polygonised surface has less area
                                ///< farther than this from every stroke (fraction of diagonal) ...
@@ -200,7 +207,7 @@ MeshTopology mesh_topology(const TriMesh& mesh);
 
 /// What the proxy stage did (the CLI's report.json).
 struct ProxyReport {
-  std::size_t samples = 0;        ///< VIPSS input points (0 for a user proxy)
+  std::size_t samples = 0;        ///< VIPSS input points of the kept solve (0 for a user proxy)
   std::size_t vertices = 0, faces = 0;
   MeshTopology topology;
   VipssSummary vipss;             ///< automatic proxy only: the kept solve

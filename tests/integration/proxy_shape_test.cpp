@@ -98,12 +98,12 @@ void expect_handle_open_and_attached(const Made& m) {
 }
 
 // Smoothed with the ladder's second weight, the handle's opening is webbed to the rim by a bulge
-// far from the strokes (and its windows' membranes close it); the least smoothed solve, tried
-// because of that far area, keeps it open.
+// far from the strokes (and its windows' membranes close it); a less smoothed solve keeps it open
+// (the net is a clean curve network: its ladder starts below the first weight).
 TEST(ProxyShape, MugKeepsItsHandle) {
   const Made m = proxy_of("mug");
   EXPECT_EQ(m.topology.genus, 1);
-  EXPECT_EQ(m.report.lambda, ProxyOptions{}.lambda_min);
+  EXPECT_LT(m.report.lambda, ProxyOptions{}.lambda_min * ProxyOptions{}.lambda_step);
   expect_handle_open_and_attached(m);
   EXPECT_LT(m.report.missed_strokes, 0.01);
 }
@@ -218,14 +218,30 @@ TEST(ProxyShape, ACleanCurveNetworkOfBlobsIsNotSmoothedAway) {
   const Made net = proxy_of("metaballs");
   EXPECT_GE(net.report.crossing_gap, 0.0);
   EXPECT_LT(net.report.crossing_gap, ProxyOptions{}.clean_gap);
-  EXPECT_EQ(net.report.lambda, ProxyOptions{}.lambda_min);
-  // Bounds that the surface smoothed from the ladder's second weight exceeds.
+  EXPECT_EQ(net.report.lambda, ProxyOptions{}.clean_lambda);
+  // Bounds that the surface smoothed from the ladder's first weight exceeds.
   const Evaluation e = evaluate(net.proxy, truth);
-  EXPECT_LT(e.accuracy.median, 0.0002);
-  EXPECT_LT(e.accuracy.p95, 0.0013);
+  EXPECT_LT(e.accuracy.median, 0.00011);
+  EXPECT_LT(e.accuracy.p95, 0.0008);
   const Made vr = proxy_of("metaballs", vr_style(1));
   EXPECT_GT(vr.report.crossing_gap, 5.0 * ProxyOptions{}.clean_gap);
   EXPECT_GT(vr.report.lambda, ProxyOptions{}.lambda_min);
+  EXPECT_EQ(vr.report.samples, ProxyOptions{}.points);
+}
+
+// A clean network's sparse sections of a long, gently curved body (a car's) are followed between
+// the samples only with denser samples: with the 400 of a hand-drawn sketch the body sinks
+// between them (accuracy median 0.09%, p95 0.43%).
+TEST(ProxyShape, ACleanNetworksBodyFollowsItsStrokesBetweenTheSamples) {
+  const Made net = proxy_of("car");
+  EXPECT_EQ(net.report.samples, ProxyOptions{}.clean_points);
+  const Evaluation e = evaluate(net.proxy, testing::truth_shape("car").mesh);
+  EXPECT_LT(e.accuracy.median, 0.0004);
+  EXPECT_LT(e.accuracy.p95, 0.003);
+  ProxyOptions sparse;
+  sparse.clean_points = sparse.points;
+  const Evaluation s = evaluate(proxy_of("car", {}, sparse).proxy, testing::truth_shape("car").mesh);
+  EXPECT_GT(s.accuracy.median, 1.5 * e.accuracy.median);
 }
 
 // A wedge's slope is a face that the strokes draw, at no axis: it is cut on its strokes as the
@@ -302,8 +318,9 @@ TEST(ProxyShape, WineglassStemIsNotCut) {
 
 TEST(ProxyShape, WineglassFootEndsAtItsRim) {
   // The foot is a disc of radius 0.26 about the y axis (y from -0.5 to -0.45), drawn by its rim and
-  // strokes across its top. Past the rim no stroke is; VIPSS's zero set runs on there as a skirt to
-  // the box around the strokes (radius 0.39 at the box's corners) unless the outline stops it.
+  // strokes across its top. Past the rim no stroke is; drawn mid-air, VIPSS's smoothed zero set
+  // runs on there as a skirt to the box around the strokes (radius 0.39 at the box's corners)
+  // unless the outline stops it. The clean net's nearly interpolating solve ends at the rim.
   const testing::TruthShape glass = testing::truth_shape("wineglass");
   const ProxyOptions outline;  // the defaults cut at the outline
   for (const SynthOptions::Style style : {SynthOptions::Style::Net, SynthOptions::Style::Vr}) {
@@ -312,7 +329,7 @@ TEST(ProxyShape, WineglassFootEndsAtItsRim) {
     Made m;
     m.sketch = synthesize_sketch(glass.mesh, options);
     m.proxy = make_proxy(m.sketch, outline, {}, &m.report);
-    EXPECT_TRUE(m.report.outline_cut);
+    if (style == SynthOptions::Style::Vr) EXPECT_TRUE(m.report.outline_cut);
     const double diagonal = m.sketch.bounding_box().diagonal();
     double widest = 0.0;
     for (const auto v : m.proxy.vertices()) {
