@@ -230,8 +230,8 @@ TEST(ProxyShape, ACleanCurveNetworkOfBlobsIsNotSmoothedAway) {
 }
 
 // A clean network's sparse sections of a long, gently curved body (a car's) are followed between
-// the samples only with denser samples: with the 400 of a hand-drawn sketch the body sinks
-// between them (accuracy median 0.09%, p95 0.43%).
+// the samples only with denser samples: with the count a hand-drawn sketch gets, the body sinks
+// between them.
 TEST(ProxyShape, ACleanNetworksBodyFollowsItsStrokesBetweenTheSamples) {
   const Made net = proxy_of("car");
   EXPECT_EQ(net.report.samples, ProxyOptions{}.clean_points);
