@@ -858,7 +858,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // follows the strokes between the samples only as closely as they lie.
   Eigen::MatrixX3d dense;
   if (clean && options.lambda < 0.0) {
-    sampling.count = options.clean_points;
+    sampling.count = std::max(options.clean_points, options.points);
     dense = sample_strokes(unit, sampling);
   }
   progress.update("sampling strokes", 1.0);

@@ -39,10 +39,11 @@ struct ProxyOptions {
   double clean_lambda = 1e-6;  ///< a clean curve network's ladder starts at this weight, below
                                ///< lambda_min (0 = interpolate), then goes on from lambda_min
                                ///< until the zero set is confined
-  std::size_t clean_points = 1000;  ///< that first solve's sample count: nearly interpolating, the
-                                    ///< surface follows the strokes between the samples only as
-                                    ///< closely as they lie (400: a car's body, a cow's face off
-                                    ///< their strokes); the ladder's other weights keep `points`
+  std::size_t clean_points = 1000;  ///< that first solve's sample count (or `points`, if more):
+                                    ///< nearly interpolating, the surface follows the strokes
+                                    ///< between the samples only as closely as they lie (400: a
+                                    ///< car's body, a cow's face off their strokes); the ladder's
+                                    ///< other weights keep `points`
   double far_distance = 0.05;  ///< when no weight of the ladder is confined, the largest is kept
                                ///< unless a smaller one's polygonised surface has less area
                                ///< farther than this from every stroke (fraction of diagonal) ...
