@@ -165,7 +165,9 @@ TEST(Proxy, SameResultWhateverTheThreadCount) {
   ProxyOptions two = one;
   two.threads = 2;
   const Sketch sketch = testing::torus_sketch(0.5, 0.2, 8);
-  const TriMesh a = make_proxy(sketch, one), b = make_proxy(sketch, two);
+  ProxyReport report;
+  const TriMesh a = make_proxy(sketch, one, {}, &report), b = make_proxy(sketch, two);
+  EXPECT_EQ(report.samples, one.clean_points) << "a clean curve network's dense solve";
   ASSERT_EQ(a.n_vertices(), b.n_vertices());
   ASSERT_EQ(a.n_faces(), b.n_faces());
   for (const auto v : a.vertices()) EXPECT_EQ(a.point(v), b.point(v));
@@ -189,6 +191,19 @@ TEST(Proxy, PlanarOrEmptySketchIsAClearError) {
   ProxyOptions bad;
   bad.edge = 0;
   EXPECT_THROW(make_proxy(testing::sphere_sketch(), bad), Error);
+}
+
+TEST(Proxy, ACleanNetworksSettingsOutOfRangeAreAClearError) {
+  ProxyOptions lambda;
+  lambda.clean_lambda = lambda.lambda_min;
+  ProxyOptions points;
+  points.clean_points = 5;
+  for (const ProxyOptions& options : {lambda, points}) {
+    std::string why;
+    EXPECT_FALSE(options.valid(&why));
+    EXPECT_NE(why.find("clean_"), std::string::npos) << why;
+    EXPECT_THROW(make_proxy(testing::sphere_sketch(), options), Error);
+  }
 }
 
 TEST(Proxy, CancelStopsWithCancelledError) {
