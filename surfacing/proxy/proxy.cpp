@@ -717,16 +717,18 @@ bool ProxyOptions::valid(std::string* why) const {
     if (why) *why = msg;
     return false;
   };
-  if (points < 10) return fail("proxy points must be at least 10");
-  if (points > 20000) return fail("proxy points above 20000 need too much memory (n^2)");
+  const auto count_ok = [&](std::size_t count, const std::string& name) {
+    if (count < 10) return fail("proxy " + name + " must be at least 10");
+    if (count > 20000) return fail("proxy " + name + " above 20000 need too much memory (n^2)");
+    return true;
+  };
+  if (!count_ok(points, "points") || !count_ok(clean_points, "clean_points")) return false;
   if (!std::isfinite(lambda)) return fail("proxy lambda must be finite (< 0: chosen per sketch)");
   if (!(lambda_min > 0.0 && lambda_max >= lambda_min && std::isfinite(lambda_max)))
     return fail("proxy lambda_min and lambda_max must satisfy 0 < lambda_min <= lambda_max");
   if (!(lambda_step > 1.0) || !std::isfinite(lambda_step)) return fail("proxy lambda_step must be > 1");
   if (!(clean_gap >= 0.0 && clean_gap < 1.0)) return fail("proxy clean_gap must be in [0, 1)");
   if (clean_crossings < 1) return fail("proxy clean_crossings must be at least 1");
-  if (clean_points < 10) return fail("proxy clean_points must be at least 10");
-  if (clean_points > 20000) return fail("proxy clean_points above 20000 need too much memory (n^2)");
   if (!(clean_lambda >= 0.0 && clean_lambda < lambda_min))
     return fail("proxy clean_lambda must be in [0, lambda_min)");
   if (!(confine_margin > 0.0 && confine_margin < 1.0))

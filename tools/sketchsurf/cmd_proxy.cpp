@@ -159,7 +159,8 @@ void add_proxy_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("SKETCH", opt->sketch, "Sketch (.tilt, .curves, .obj, .json)")->required();
   cmd->add_option("-o,--output", opt->output, "Proxy mesh (.obj or .ply)")->required();
   cmd->add_option("--points", opt->proxy.points,
-                  "VIPSS sample points (a clean curve network's first solve: at least proxy.clean_points)")
+                  "VIPSS sample points (a clean curve network's first solve: at least "
+                  "proxy.clean_points)")
       ->capture_default_str()
       ->check(whole_number(10, 20000));
   cmd->add_option("--lambda", opt->proxy.lambda,
