@@ -77,6 +77,16 @@ std::vector<std::uint8_t> plane_boundary(const TriMesh& mesh, const std::optiona
   return on;
 }
 
+/// The strokes but the boundary strokes: those a region's model and the proxy are compared on
+/// (smooth_fallback.h). An open border is attracted to its boundary strokes (Eq. 13) whichever
+/// surface its region keeps, and the trimmed proxy's border, cut along the proxy's edges, passes
+/// off them: their points would make the proxy look farther from the region's strokes than it is.
+StrokeSegments surface_strokes(const Sketch& sketch) {
+  Sketch inner = sketch;
+  for (Stroke& s : inner.strokes) s.ignored = s.ignored || s.boundary;
+  return stroke_segments(inner, false);
+}
+
 }  // namespace
 
 StrokeDistance stroke_distance(const TriMesh& mesh, const Sketch& sketch, double diagonal,
@@ -170,9 +180,9 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   summary.attracted_vertices = constraints.attract.size();
   // Regions whose model cannot follow their strokes stay at the proxy (smooth_fallback.h).
   const Eigen::MatrixX3d start_positions = vertex_matrix(seamed.mesh);
-  const std::vector<char> at_proxy = regions_at_proxy(seamed, models, *constraints.strokes, diagonal,
-                                                      options.smooth_fallback, options.energy,
-                                                      &summary.smooth_fallback);
+  const std::vector<char> at_proxy =
+      regions_at_proxy(seamed, models, open ? surface_strokes(sketch) : *constraints.strokes, diagonal,
+                       options.smooth_fallback, options.energy, &summary.smooth_fallback);
   std::vector<char> held(seamed.labels.size(), 0), attracted(seamed.labels.size(), 0);
   for (const AttractTarget& target : constraints.attract) attracted[target.vertex] = 1;
   for (auto v : seamed.mesh.vertices()) {

@@ -69,7 +69,8 @@ struct SmoothFallbackSummary {
 /// starts the solve (project_vertices() with `energy`'s steps) moves at most 5% of its own
 /// vertices farther than options.agree * diagonal; with options.hold_curved, when it has enough
 /// points and its model is not a plane. Fills summary->regions, kept and held.
-/// Deterministic; `strokes` are those the surface is fitted to.
+/// Deterministic; `strokes` are those the surface is fitted to (extract() leaves out an open
+/// surface's boundary strokes: its border is attracted to them either way).
 std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
                                    const StrokeSegments& strokes, double diagonal,
                                    const SmoothFallbackOptions& options, const MeshEnergyOptions& energy,
