@@ -278,8 +278,8 @@ bool MeshEnergyFunction::evaluate(const double* x, double* cost, double* gradien
     total += 0.5 * projected_residuals_.squaredNorm();
     if (gradient) G += projected_transpose_ * projected_residuals_;
   }
-  const double sa = energy_.attract_weight;
   for (const AttractTarget& t : energy_.attract) {
+    const double sa = energy_.attract_weight * t.weight;
     const Eigen::Vector3d d = X.segment<3>(3 * t.vertex) - t.point;
     total += 0.5 * sa * d.squaredNorm();
     if (gradient) G.segment<3>(3 * t.vertex) += sa * d;
@@ -306,7 +306,7 @@ Eigen::VectorXd MeshEnergyFunction::hessian_diagonal() const {
   for (int r = 0; r < projected_.outerSize(); ++r)
     for (RowMajorMatrix::InnerIterator it(projected_, r); it; ++it) d[it.col()] += it.value() * it.value();
   for (const ProjectionTerm& t : energy_.project) d.segment<3>(3 * t.vertex).array() += t.weight;
-  for (const AttractTarget& t : energy_.attract) d.segment<3>(3 * t.vertex).array() += energy_.attract_weight;
+  for (const AttractTarget& t : energy_.attract) d.segment<3>(3 * t.vertex).array() += energy_.attract_weight * t.weight;
   for (int v : energy_.plane_vertices) d.segment<3>(3 * v) += energy_.plane_weight * energy_.plane->normal.cwiseAbs2();
   return d;
 }
@@ -326,7 +326,7 @@ MeshEnergyTerms MeshEnergyFunction::terms(const double* x) const {
   e.regularize_2d = residuals.head(rows_2d).squaredNorm() + (projected_ * X).squaredNorm();
   e.regularize_1d = residuals.tail(residuals.size() - rows_2d).squaredNorm();
   for (const AttractTarget& t : energy_.attract)
-    e.attract += energy_.attract_weight * (X.segment<3>(3 * t.vertex) - t.point).squaredNorm();
+    e.attract += energy_.attract_weight * t.weight * (X.segment<3>(3 * t.vertex) - t.point).squaredNorm();
   for (int v : energy_.plane_vertices) {
     const double off = energy_.plane->signed_distance(X.segment<3>(3 * v));
     e.plane += energy_.plane_weight * off * off;

@@ -178,7 +178,8 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   constraints.outline_margin = options.outline.margin * diagonal;
   if (open) constraints.attract = boundary_targets(seamed.mesh, sketch, on_plane, diagonal, options.trim);
   summary.attracted_vertices = constraints.attract.size();
-  // Regions whose model cannot follow their strokes stay at the proxy (smooth_fallback.h).
+  // Regions whose model cannot follow their strokes stay at the proxy; doubly curved ones only a
+  // little nearer their strokes are pulled toward it (smooth_fallback.h).
   const Eigen::MatrixX3d start_positions = vertex_matrix(seamed.mesh);
   const std::vector<char> at_proxy =
       regions_at_proxy(seamed, models, open ? surface_strokes(sketch) : *constraints.strokes, diagonal,
@@ -187,10 +188,16 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   for (const AttractTarget& target : constraints.attract) attracted[target.vertex] = 1;
   for (auto v : seamed.mesh.vertices()) {
     const auto& l = seamed.labels[v.idx()];
-    held[v.idx()] = std::any_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] != 0; });
-    if (!held[v.idx()] || attracted[v.idx()]) continue;  // an open border follows its strokes
-    constraints.held.push_back(v.idx());
-    constraints.attract.push_back({v.idx(), start_positions.row(v.idx()).transpose()});
+    held[v.idx()] = std::any_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] == kRegionHeld; });
+    if (attracted[v.idx()]) continue;  // an open border follows its strokes
+    if (held[v.idx()]) {
+      constraints.held.push_back(v.idx());
+      constraints.attract.push_back({v.idx(), start_positions.row(v.idx()).transpose()});
+    } else if (!seamed.mesh.is_boundary(v) &&  // an open border keeps its 1D Laplacian (energy.h)
+               std::all_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] == kRegionPulled; })) {
+      constraints.attract.push_back(
+          {v.idx(), start_positions.row(v.idx()).transpose(), options.smooth_fallback.pull_weight});
+    }
   }
   // Thin parts' far sides, found on the proxy, end just inside their region's surface, apart
   // from the near side (back_sides.h); held vertices stay where they are held.

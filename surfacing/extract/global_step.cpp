@@ -234,8 +234,8 @@ class GlobalStep {
     for (const ProjectionTerm& t : energy.project) diagonal[t.vertex] += t.weight;
     constant_rhs_ = Eigen::MatrixX3d::Zero(n, 3);
     for (const AttractTarget& t : energy.attract) {
-      diagonal[t.vertex] += energy.attract_weight;
-      constant_rhs_.row(t.vertex) += energy.attract_weight * (frame_ * t.point).transpose();
+      diagonal[t.vertex] += energy.attract_weight * t.weight;
+      constant_rhs_.row(t.vertex) += energy.attract_weight * t.weight * (frame_ * t.point).transpose();
     }
     Eigen::VectorXd plane_diagonal = Eigen::VectorXd::Zero(n);
     for (int v : energy.plane_vertices) {

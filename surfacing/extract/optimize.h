@@ -77,7 +77,9 @@ struct MeshEnergyOptions {
 /// Where the vertices of an open boundary are pulled (Eq. 13): one target point per entry.
 struct AttractTarget {
   int vertex = -1;                                ///< vertex of the seamed mesh
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< a boundary-stroke point, mesh units
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< a boundary-stroke point or the vertex's
+                                                  ///< proxy position, mesh units
+  double weight = 1.0;                            ///< share of attract_weight for this target
 };
 
 /// Extra constraints of E_mesh: open boundaries and the mirror plane.

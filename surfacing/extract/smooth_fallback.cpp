@@ -21,6 +21,18 @@ bool SmoothFallbackOptions::valid(std::string* why) const {
     if (why) *why = "extract smooth_fallback agree must be > 0";
     return false;
   }
+  if (!(pull_ratio >= 1.0)) {
+    if (why) *why = "extract smooth_fallback pull_ratio must be >= 1";
+    return false;
+  }
+  if (!(pull_weight >= 0.0)) {
+    if (why) *why = "extract smooth_fallback pull_weight must be >= 0";
+    return false;
+  }
+  if (!(pull_curvature >= 0.0)) {
+    if (why) *why = "extract smooth_fallback pull_curvature must be >= 0";
+    return false;
+  }
   return true;
 }
 
@@ -40,6 +52,28 @@ int face_region(const LabeledMesh& mesh, const Eigen::MatrixX3i& F, int f) {
   return a.front();
 }
 
+// The smaller absolute principal curvature of the level set of `model` through x (1 / length):
+// the eigenvalues of the unit normal's derivative in the tangent plane, by central differences
+// of step h. 0 on a plane, a cylinder or a cone; 1 / r on a sphere of radius r.
+double smaller_curvature(const ImplicitModel& model, const Eigen::Vector3d& x, double h) {
+  const auto unit_normal = [&](const Eigen::Vector3d& y) {
+    const Eigen::Vector3d g = model.gradient(y);
+    const double length = g.norm();
+    return length > 0.0 ? Eigen::Vector3d(g / length) : Eigen::Vector3d::Zero();
+  };
+  const Eigen::Vector3d n = unit_normal(x);
+  if (n.isZero()) return 0.0;
+  Eigen::Matrix3d J;
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(c);
+    J.col(c) = (unit_normal(x + e) - unit_normal(x - e)) / (2.0 * h);
+  }
+  const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  const double a = t1.dot(J * t1), d = t2.dot(J * t2), b = 0.5 * (t1.dot(J * t2) + t2.dot(J * t1));
+  const double mean = 0.5 * (a + d), spread = std::sqrt(0.25 * (a - d) * (a - d) + b * b);
+  return std::min(std::abs(mean + spread), std::abs(mean - spread));
+}
+
 }  // namespace
 
 std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<ImplicitModel>& models,
@@ -49,7 +83,7 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
   std::vector<char> kept(models.size(), 0);
   SmoothFallbackSummary local;
   SmoothFallbackSummary& out = summary ? *summary : local;
-  out.regions = out.kept = out.held = 0;
+  out.regions = out.kept = out.held = out.pulled = 0;
   const Eigen::MatrixX3d V = vertex_matrix(mesh.mesh);
   const Eigen::MatrixX3i F = face_matrix(mesh.mesh);
   if (!options.enabled || F.rows() == 0 || strokes.points.rows() == 0) return kept;
@@ -76,7 +110,32 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
                (options.hold_curved || to_proxy[r] < (1.0 + options.margin) * to_model[r]);
   out.regions = static_cast<std::size_t>(
       std::count_if(count.begin(), count.end(), [&](std::size_t c) { return c >= options.min_points; }));
-  if (std::none_of(closer.begin(), closer.end(), [](char c) { return c != 0; })) return kept;
+  // Regions projected but only a little nearer their strokes, to pull when doubly curved at their
+  // own vertices.
+  std::vector<char> pull(models.size(), 0);
+  if (!options.hold_curved && options.pull_ratio > 1.0) {
+    std::vector<std::vector<double>> curvatures(models.size());
+    const double h = 1e-3 * diagonal;
+    for (std::size_t v = 0; v < mesh.labels.size(); ++v) {
+      if (mesh.labels[v].size() != 1) continue;
+      const auto r = static_cast<std::size_t>(mesh.labels[v].front());
+      if (closer[r] || count[r] < options.min_points || models[r].degree <= 1 ||
+          !(to_proxy[r] < options.pull_ratio * to_model[r]))
+        continue;
+      curvatures[r].push_back(smaller_curvature(models[r], V.row(static_cast<Eigen::Index>(v)).transpose(), h));
+    }
+    for (std::size_t r = 0; r < models.size(); ++r) {
+      auto& k = curvatures[r];
+      if (k.empty()) continue;
+      const auto median = k.begin() + static_cast<std::ptrdiff_t>(k.size() / 2);
+      std::nth_element(k.begin(), median, k.end());
+      pull[r] = *median * diagonal >= options.pull_curvature;
+    }
+  }
+  const auto any = [](const std::vector<char>& flags) {
+    return std::any_of(flags.begin(), flags.end(), [](char c) { return c != 0; });
+  };
+  if (!any(closer) && !any(pull)) return kept;
 
   // How far the start of the solve (optimize.h) would move each region's own vertices (not
   // asked when every curved region is held).
@@ -91,16 +150,16 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
             (to_eigen(mesh.mesh.point(v)) - to_eigen(projected.mesh.point(v))).norm());
   }
   for (std::size_t r = 0; r < models.size(); ++r) {
-    if (!closer[r]) continue;
+    if (!closer[r] && !pull[r]) continue;
     auto& m = moves[r];
     const auto p95 = m.begin() + static_cast<std::ptrdiff_t>(m.size() * 95 / 100);
     if (p95 != m.end()) std::nth_element(m.begin(), p95, m.end());
     if (p95 != m.end() && *p95 > options.agree * diagonal) continue;  // the model reshapes it
-    kept[r] = 1;
-    ++out.kept;
+    kept[r] = closer[r] ? kRegionHeld : kRegionPulled;
+    ++(closer[r] ? out.kept : out.pulled);
   }
   for (const auto& labels : mesh.labels)
-    out.held += std::any_of(labels.begin(), labels.end(), [&](int l) { return kept[l] != 0; });
+    out.held += std::any_of(labels.begin(), labels.end(), [&](int l) { return kept[l] == kRegionHeld; });
   return kept;
 }
 

@@ -81,7 +81,7 @@ void add_residual_blocks(const MeshEnergy& energy, std::vector<double>& x, ceres
           nullptr, params);
     }
   for (const AttractTarget& t : energy.attract)
-    problem.AddResidualBlock(AttractResidual::Create(t.point, energy.attract_weight), nullptr,
+    problem.AddResidualBlock(AttractResidual::Create(t.point, energy.attract_weight * t.weight), nullptr,
                              &x[3 * t.vertex]);
   for (int v : energy.plane_vertices)
     problem.AddResidualBlock(PlaneResidual::Create(*energy.plane, energy.plane_weight), nullptr,

@@ -153,6 +153,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                       {"held_vertices", ex.optimization.held_vertices},
                       {"outline_vertices", ex.optimization.outline_vertices},
                       {"regions_at_proxy", ex.smooth_fallback.kept},
+                      {"regions_pulled_to_proxy", ex.smooth_fallback.pulled},
                       {"smooth_parts", ex.smooth_fallback.parts},
                       {"smooth_parts_at_proxy", ex.smooth_fallback.reverted},
                       {"back_side_vertices", ex.back_side_vertices},

@@ -48,6 +48,34 @@ ImplicitModel sphere_model(const Eigen::Vector3d& center, double radius) {
   return m;
 }
 
+/// The mean squared distance to `proxy` of the stroke points beyond x = from.
+double proxy_mean_square(const TriMesh& proxy, const StrokeSegments& strokes, double from) {
+  const ClosestFaceTree tree(vertex_matrix(proxy), face_matrix(proxy));
+  double squares = 0.0;
+  int count = 0;
+  for (Eigen::Index i = 0; i < strokes.points.rows(); ++i) {
+    const Eigen::Vector3d p = strokes.points.row(i).transpose();
+    if (p.x() < from) continue;
+    Eigen::Vector3d q;
+    tree.closest_face(p, &q);
+    squares += (q - p).squaredNorm();
+    ++count;
+  }
+  return squares / count;
+}
+
+/// The scene's second proxy sphere grown by 2%, and models: the first sphere exact, the second a
+/// sphere whose mean squared distance to its stroke points is the proxy's over `nearer`.
+std::vector<ImplicitModel> second_sphere_nearer(Scene& s, double nearer) {
+  const auto second = static_cast<int>(s.proxy.mesh.n_vertices() / 2);
+  const Eigen::Vector3d c(4.0, 0.0, 0.0);
+  for (auto v : s.proxy.mesh.vertices())
+    if (v.idx() >= second)
+      s.proxy.mesh.set_point(v, to_openmesh(c + 1.02 * (to_eigen(s.proxy.mesh.point(v)) - c)));
+  const double squares = proxy_mean_square(s.proxy.mesh, s.strokes, 2.0);
+  return {sphere_model(Eigen::Vector3d::Zero(), 1.0), sphere_model(c, 1.0 + std::sqrt(squares / nearer))};
+}
+
 TEST(SmoothFallback, ARegionWhoseModelMissesItsStrokesStaysAtTheProxy) {
   const Scene s = two_spheres();
   // Region 0's model is the drawn sphere; region 1's is 8% too large: it misses every stroke
@@ -81,31 +109,86 @@ TEST(SmoothFallback, ModelsCloserThanTheProxyAreAllProjectedOnto) {
 }
 
 TEST(SmoothFallback, AModelOnlyAboutAsCloseAsTheProxyStaysAtTheProxy) {
+  // The second model 2.5% nearer its strokes than the proxy in mean squared distance: within the
+  // margin, the smooth proxy is kept; without it, the model is projected onto and, a sphere only a
+  // little nearer, pulled toward the proxy.
   Scene s = two_spheres();
-  // The second proxy sphere 2% too large; its model 2.5% nearer its strokes in mean squared
-  // distance: within the margin, the smooth proxy is kept; without it, the model wins.
-  const auto second = static_cast<int>(s.proxy.mesh.n_vertices() / 2);
-  const Eigen::Vector3d c(4.0, 0.0, 0.0);
-  for (auto v : s.proxy.mesh.vertices())
-    if (v.idx() >= second)
-      s.proxy.mesh.set_point(v, to_openmesh(c + 1.02 * (to_eigen(s.proxy.mesh.point(v)) - c)));
-  const ClosestFaceTree tree(vertex_matrix(s.proxy.mesh), face_matrix(s.proxy.mesh));
-  double squares = 0.0;
-  int count = 0;
-  for (Eigen::Index i = 0; i < s.strokes.points.rows(); ++i) {
-    const Eigen::Vector3d p = s.strokes.points.row(i).transpose();
-    if (p.x() < 2.0) continue;
-    Eigen::Vector3d q;
-    tree.closest_face(p, &q);
-    squares += (q - p).squaredNorm();
-    ++count;
-  }
-  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
-                                          sphere_model(c, 1.0 + std::sqrt(squares / count / 1.025))};
+  const std::vector<ImplicitModel> models = second_sphere_nearer(s, 1.025);
   EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {}), (std::vector<char>{0, 1}));
   SmoothFallbackOptions no_margin;
   no_margin.margin = 0.0;
-  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, no_margin, {}), (std::vector<char>{0, 0}));
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, no_margin, {}),
+            (std::vector<char>{kRegionProjected, kRegionPulled}));
+}
+
+TEST(SmoothFallback, ADoublyCurvedModelOnlyALittleNearerItsStrokesIsPulledTowardTheProxy) {
+  // The second model 10% nearer (past the 5% margin, within pull_ratio's 25%): projected and
+  // pulled. A sphere of radius 1 in a sketch of diagonal 6 has curvature 6 in diagonal units:
+  // pulled under a pull_curvature of 5, not over 7. 40% nearer: projected only.
+  Scene s = two_spheres();
+  const std::vector<ImplicitModel> models = second_sphere_nearer(s, 1.1);
+  SmoothFallbackSummary summary;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {}, &summary),
+            (std::vector<char>{kRegionProjected, kRegionPulled}));
+  EXPECT_EQ(summary.pulled, 1u);
+  EXPECT_EQ(summary.kept, 0u);
+  EXPECT_EQ(summary.held, 0u);
+  SmoothFallbackOptions curvature;
+  curvature.pull_curvature = 5.0;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, curvature, {})[1], kRegionPulled);
+  curvature.pull_curvature = 7.0;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, curvature, {})[1], kRegionProjected);
+  SmoothFallbackOptions off;
+  off.pull_ratio = 1.0;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, off, {})[1], kRegionProjected);
+  Scene clearly = two_spheres();
+  EXPECT_EQ(regions_at_proxy(clearly.proxy, second_sphere_nearer(clearly, 1.4), clearly.strokes, 6.0, {}, {})[1],
+            kRegionProjected);
+}
+
+TEST(SmoothFallback, ACylinderOnlyALittleNearerItsStrokesIsProjectedWithoutAPull) {
+  // A tube of radius 1 drawn by eight lines along its axis and three circles; the proxy 2% too
+  // wide; the model a cylinder 10% nearer the strokes than the proxy. A cylinder is developable (a
+  // leg, a mug's body): there the proxy bulges or inflates between the strokes, and the model is
+  // right: projected, not pulled.
+  const int around = 64, along = 41;
+  Eigen::MatrixX3d V(around * along, 3);
+  for (int j = 0; j < along; ++j)
+    for (int i = 0; i < around; ++i) {
+      const double a = 2.0 * M_PI * i / around, z = -2.0 + 4.0 * j / (along - 1);
+      V.row(j * around + i) << 1.02 * std::cos(a), 1.02 * std::sin(a), z;
+    }
+  Eigen::MatrixX3i F(2 * around * (along - 1), 3);
+  int f = 0;
+  for (int j = 0; j + 1 < along; ++j)
+    for (int i = 0; i < around; ++i) {
+      const int a = j * around + i, b = j * around + (i + 1) % around;
+      F.row(f++) << a, b, a + around;
+      F.row(f++) << b, b + around, a + around;
+    }
+  LabeledMesh proxy{mesh_from_matrices(V, F), std::vector<std::vector<int>>(V.rows(), {0}),
+                    std::vector<int>(V.rows(), -1)};
+  Sketch sketch;
+  for (int k = 0; k < 8; ++k) {
+    const double a = M_PI / 4.0 * k;
+    sketch.strokes.push_back(sample_curve(
+        [&](double t) { return Eigen::Vector3d(std::cos(a), std::sin(a), t); }, -1.8, 1.8, 0.02));
+  }
+  for (double z : {-1.5, 0.0, 1.5})
+    sketch.strokes.push_back(sample_curve(
+        [&](double t) { return Eigen::Vector3d(std::cos(t), std::sin(t), z); }, 0.0, 2.0 * M_PI, 0.02));
+  const StrokeSegments strokes = stroke_segments(sketch, false);
+  const double squares = proxy_mean_square(proxy.mesh, strokes, -10.0);
+  ImplicitModel cylinder;
+  cylinder.degree = 2;
+  cylinder.coefficients = Eigen::VectorXd::Zero(10);
+  const double radius = 1.0 + std::sqrt(squares / 1.1);
+  cylinder.coefficients[0] = -radius * radius;
+  cylinder.coefficients[4] = cylinder.coefficients[7] = 1.0;  // x^2 + y^2
+  SmoothFallbackSummary summary;
+  EXPECT_EQ(regions_at_proxy(proxy, {cylinder}, strokes, 5.0, {}, {}, &summary), std::vector<char>{0});
+  EXPECT_EQ(summary.regions, 1u);
+  EXPECT_EQ(summary.pulled, 0u);
 }
 
 TEST(SmoothFallback, AModelThatReshapesTheRegionIsProjectedOntoEvenWhenFartherFromItsStrokes) {
