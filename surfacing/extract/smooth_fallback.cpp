@@ -104,33 +104,32 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
     to_model[r] += std::isfinite(m) ? std::min(m * m, reach * reach) : reach * reach;
     ++count[r];
   }
-  std::vector<char> closer(models.size(), 0);  // the proxy closer to the region's strokes
-  for (std::size_t r = 0; r < models.size(); ++r)
-    closer[r] = count[r] >= options.min_points && models[r].degree > 1 &&
-               (options.hold_curved || to_proxy[r] < (1.0 + options.margin) * to_model[r]);
+  // Curved regions with enough points: the proxy closer to their strokes, or only a little
+  // farther (a candidate for the pull).
+  std::vector<char> closer(models.size(), 0), nearly(models.size(), 0);
+  for (std::size_t r = 0; r < models.size(); ++r) {
+    if (count[r] < options.min_points || models[r].degree <= 1) continue;
+    closer[r] = options.hold_curved || to_proxy[r] < (1.0 + options.margin) * to_model[r];
+    nearly[r] = !closer[r] && to_proxy[r] < options.pull_ratio * to_model[r];
+  }
   out.regions = static_cast<std::size_t>(
       std::count_if(count.begin(), count.end(), [&](std::size_t c) { return c >= options.min_points; }));
-  // Regions projected but only a little nearer their strokes, to pull when doubly curved at their
-  // own vertices.
+  // The candidates are pulled when doubly curved at their own vertices.
   std::vector<char> pull(models.size(), 0);
-  if (!options.hold_curved && options.pull_ratio > 1.0) {
-    std::vector<std::vector<double>> curvatures(models.size());
-    const double h = 1e-3 * diagonal;
-    for (std::size_t v = 0; v < mesh.labels.size(); ++v) {
-      if (mesh.labels[v].size() != 1) continue;
-      const auto r = static_cast<std::size_t>(mesh.labels[v].front());
-      if (closer[r] || count[r] < options.min_points || models[r].degree <= 1 ||
-          !(to_proxy[r] < options.pull_ratio * to_model[r]))
-        continue;
-      curvatures[r].push_back(smaller_curvature(models[r], V.row(static_cast<Eigen::Index>(v)).transpose(), h));
-    }
-    for (std::size_t r = 0; r < models.size(); ++r) {
-      auto& k = curvatures[r];
-      if (k.empty()) continue;
-      const auto median = k.begin() + static_cast<std::ptrdiff_t>(k.size() / 2);
-      std::nth_element(k.begin(), median, k.end());
-      pull[r] = *median * diagonal >= options.pull_curvature;
-    }
+  std::vector<std::vector<double>> curvatures(models.size());
+  for (std::size_t v = 0; v < mesh.labels.size(); ++v) {
+    if (mesh.labels[v].size() != 1) continue;
+    const int r = mesh.labels[v].front();
+    if (nearly[r])
+      curvatures[r].push_back(
+          smaller_curvature(models[r], V.row(static_cast<Eigen::Index>(v)).transpose(), 1e-3 * diagonal));
+  }
+  for (std::size_t r = 0; r < models.size(); ++r) {
+    auto& k = curvatures[r];
+    if (k.empty()) continue;
+    const auto median = k.begin() + static_cast<std::ptrdiff_t>(k.size() / 2);
+    std::nth_element(k.begin(), median, k.end());
+    pull[r] = *median * diagonal >= options.pull_curvature;
   }
   const auto any = [](const std::vector<char>& flags) {
     return std::any_of(flags.begin(), flags.end(), [](char c) { return c != 0; });
