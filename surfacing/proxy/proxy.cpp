@@ -20,6 +20,7 @@
 #include "surfacing/portable_math.h"
 #include "surfacing/proxy/attract.h"
 #include "surfacing/proxy/loft.h"
+#include "surfacing/proxy/part_normals.h"
 #include "surfacing/proxy/point_grid.h"
 #include "surfacing/proxy/polygonize.h"
 #include "surfacing/proxy/remesh.h"
@@ -367,6 +368,27 @@ class GridMemo {
   double h_;
   std::unordered_map<std::uint64_t, double> known_;
 };
+
+// The solve's unit normals at its samples `at`, signed to point outside (where s f > 0, `scale` s):
+// VIPSS's sign is arbitrary; the one that agrees with s f's gradient at most samples.
+Eigen::MatrixX3d outward_normals(const VipssResult& vipss, double scale, const Eigen::MatrixX3d& at) {
+  double agree = 0.0;
+  for (Eigen::Index i = 0; i < at.rows(); ++i) {
+    Eigen::Vector3d g;
+    vipss.function.value_gradient(at.row(i).transpose(), &g);
+    agree += (scale * g).normalized().dot(vipss.normals.row(i).transpose());
+  }
+  return (agree >= 0.0 ? 1.0 : -1.0) * vipss.normals;
+}
+
+// The rows of `points` whose flag is set.
+Eigen::MatrixX3d rows_where(const Eigen::MatrixX3d& points, const std::vector<char>& flags) {
+  Eigen::MatrixX3d out(std::count(flags.begin(), flags.end(), 1), 3);
+  Eigen::Index row = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    if (flags[static_cast<std::size_t>(i)]) out.row(row++) = points.row(i);
+  return out;
+}
 
 // The factor that turns f into a distance to first order near the samples, positive outside:
 // the sign f has on most of the faces of `box` (a grid on each; a sheet running out crosses a
@@ -737,6 +759,11 @@ bool ProxyOptions::valid(std::string* why) const {
     return fail("proxy confine_radius must be in [0, 1)");
   if (!(confine_near >= 0.0 && confine_near < 1.0)) return fail("proxy confine_near must be in [0, 1)");
   if (!(near_open_ratio >= 0.0)) return fail("proxy near_open_ratio must be >= 0");
+  if (!(part_reach >= 0.0 && part_reach < 1.0)) return fail("proxy part_reach must be in [0, 1)");
+  if (part_webs < 1) return fail("proxy part_webs must be at least 1");
+  if (!(part_free >= 0.0 && part_free < 1.0)) return fail("proxy part_free must be in [0, 1)");
+  if (!(part_far_ratio >= 0.0 && part_far_ratio <= 1.0))
+    return fail("proxy part_far_ratio must be in [0, 1]");
   if (!(framed_gap > 0.0 && framed_gap <= 360.0)) return fail("proxy framed_gap must be in (0, 360]");
   if (!(near_open_least >= 0.0 && near_open_least <= 1.0))
     return fail("proxy near_open_least must be in [0, 1]");
@@ -972,11 +999,11 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       closed += found.thin.size();
     return closed;
   };
-  const auto solve = [&](double lambda, const Eigen::MatrixX3d& at) {
+  const auto solve = [&](double lambda, const Eigen::MatrixX3d& at, const VipssStart* from) {
     auto t = Clock::now();
     Candidate c;
     vipss_options.lambda = lambda;
-    c.vipss = std::make_unique<VipssResult>(solve_vipss(at, vipss_options, progress));
+    c.vipss = std::make_unique<VipssResult>(solve_vipss(at, vipss_options, progress, from));
     c.lambda = lambda;
     c.samples = static_cast<std::size_t>(at.rows());
     ++r.vipss_solves;
@@ -1040,10 +1067,10 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (kept.mesh.F.rows() == 0 || (c.mesh.F.rows() > 0 && !kept_better)) kept = std::move(c);
   };
   for (std::size_t i = ladder.size() > 1 && !clean ? 1 : 0; i < ladder.size(); ++i) {
-    Candidate c = solve(ladder[i], i == 0 && dense.rows() > 0 ? dense : samples);
+    Candidate c = solve(ladder[i], i == 0 && dense.rows() > 0 ? dense : samples, nullptr);
     const bool closed = c.vipss->summary.closed;
     if (i == 1 && !clean && c.mesh.F.rows() > 0 && c.far >= options.far_tie)
-      consider(solve(ladder[0], samples));
+      consider(solve(ladder[0], samples, nullptr));
     consider(std::move(c));
     if (closed) break;
   }
@@ -1077,6 +1104,45 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       }
     }
     r.polygonize_seconds += seconds_since(t);
+  }
+  // Thin parts webbed together (a chair's legs into a skirt, a torch's handle into a sail): where
+  // the strokes round samples surround axes and the space in front of them, clear of strokes and
+  // between samples that face each other, lies inside the surface, VIPSS's normals are those of a
+  // blob round the parts (part_normals.h). Solved again with the parts' normals kept and the
+  // normals near the webs free to follow; kept when much less of the surface lies far from every
+  // stroke (the web was such surface), without more than one handle more or another part. Not
+  // where the strokes frame no surface (far_most).
+  if (options.part_reach > 0.0 && kept.mesh.F.rows() > 0 && kept.far <= options.far_most) {
+    const auto t = Clock::now();
+    const Eigen::MatrixX3d& at = kept.samples == static_cast<std::size_t>(samples.rows()) ? samples : dense;
+    PartSearch search_parts;
+    search_parts.reach = options.part_reach;
+    search_parts.threads = threads;
+    const PartNormals parts = part_normals(kept.vipss->function, kept.field->scale(), at,
+                                           stroke_points, stroke_grid, search_parts);
+    const auto webs = static_cast<std::size_t>(std::count(parts.facing.begin(), parts.facing.end(), 1));
+    r.polygonize_seconds += seconds_since(t);
+    if (webs >= options.part_webs) {
+      VipssStart from;
+      from.normals = outward_normals(*kept.vipss, kept.field->scale(), at);
+      from.fixed.assign(static_cast<std::size_t>(at.rows()), 1);
+      const Eigen::MatrixX3d web_samples = rows_where(at, parts.web);
+      const PointGrid web_grid(web_samples);
+      for (Eigen::Index i = 0; i < at.rows(); ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        if (parts.known[ii])
+          from.normals.row(i) = parts.normals.row(i);
+        else
+          from.fixed[ii] = web_grid.nearest(at.row(i).transpose(), options.part_free).second >=
+                           options.part_free * options.part_free;
+      }
+      Candidate c = solve(kept.lambda, at, &from);
+      if (c.mesh.F.rows() > 0 && c.genus <= kept.genus + 1 && c.components <= kept.components &&
+          c.far <= options.part_far_ratio * kept.far) {
+        kept = std::move(c);
+        r.part_normals = static_cast<std::size_t>(std::count(parts.known.begin(), parts.known.end(), 1));
+      }
+    }
   }
   // The wider windows that no stroke depicts are closed on the kept solve only: on every solve
   // they would change the choice above, which weighs handles (a smoother solve that webs a chair's

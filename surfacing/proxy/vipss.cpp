@@ -125,7 +125,9 @@ void normals_from_angles(const double* angles, Index n, Vec& g) {
 // E(angles) = g^T H g with H = S^-1 applied through the Cholesky factor of S.
 class NormalEnergy : public detail::LbfgsFunction {
  public:
-  explicit NormalEnergy(const Mat& factor) : factor_(factor) {}
+  /// `fixed` (if given, one flag a point): those points' angles keep their start (zero gradient).
+  explicit NormalEnergy(const Mat& factor, const std::vector<char>* fixed = nullptr)
+      : factor_(factor), fixed_(fixed) {}
   Index size() const override { return 2 * (factor_.rows() / 3); }
   bool evaluate(const double* angles, double* cost, double* gradient) const override {
     const Index n = factor_.rows() / 3;
@@ -140,6 +142,7 @@ class NormalEnergy : public detail::LbfgsFunction {
       const Eigen::Vector3d dh = 2.0 * h.segment<3>(3 * i);
       gradient[2 * i] = dh.dot(Eigen::Vector3d(ct * cp, ct * sp, -st));
       gradient[2 * i + 1] = dh.dot(Eigen::Vector3d(-st * sp, st * cp, 0.0));
+      if (fixed_ && (*fixed_)[static_cast<std::size_t>(i)]) gradient[2 * i] = gradient[2 * i + 1] = 0.0;
     }
     return std::isfinite(*cost);
   }
@@ -151,6 +154,7 @@ class NormalEnergy : public detail::LbfgsFunction {
 
  private:
   const Mat& factor_;
+  const std::vector<char>* fixed_;
 };
 
 // Kernel matrix blocks of the r^3 Hermite RBF (METHOD.md section 1):
@@ -317,12 +321,14 @@ void HermiteRbf::values(const Eigen::MatrixX3d& points, Eigen::VectorXd& out,
 }
 
 VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
-                        const Progress& progress) {
+                        const Progress& progress, const VipssStart* from) {
   std::string why;
   if (!options.valid(&why)) throw Error::usage(why);
   const Index n = x.rows();
   if (n < 5) throw Error::processing("VIPSS needs at least 5 points, got " + std::to_string(n));
   if (!x.allFinite()) throw Error::processing("VIPSS points contain NaN or Inf");
+  if (from && (from->normals.rows() != n || from->fixed.size() != static_cast<std::size_t>(n)))
+    throw Error::usage("VIPSS start: one normal and one flag a point");
   const unsigned threads = options.threads;
   VipssResult result;
   result.summary.points = static_cast<std::size_t>(n);
@@ -389,12 +395,12 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
   s.triangularView<Eigen::StrictlyUpper>() = s.transpose();
   result.summary.factor_seconds = seconds_since(t0);
 
-  // Initial normals: the eigenvector of H with the smallest eigenvalue, i.e. of S = H^-1 with the
-  // largest, by Lanczos (Spectra).
+  // Initial normals (unless a start gives them): the eigenvector of H with the smallest eigenvalue,
+  // i.e. of S = H^-1 with the largest, by Lanczos (Spectra).
   t0 = std::chrono::steady_clock::now();
   progress.update("vipss: initial normals", 0.0);
   Vec v0;
-  {
+  if (!from) {
     ParallelSymProduct op(s, threads);
     const Index ncv = std::min<Index>(3 * n, 24);
     Spectra::SymEigsSolver<ParallelSymProduct> eigs(op, 1, ncv);
@@ -446,7 +452,7 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
     std::string termination;
   };
   auto optimum = [&](std::vector<double> angles, std::size_t start) {
-    const NormalEnergy energy(s);
+    const NormalEnergy energy(s, from ? &from->fixed : nullptr);
     detail::LbfgsOptions lbfgs_options;
     lbfgs_options.rank = kLbfgsRank;
     lbfgs_options.max_iterations = options.max_iterations;
@@ -515,14 +521,15 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
     }
     return angles;
   };
-  const std::vector<double> eigen_start =
-      to_angles([&](Index i) -> Eigen::Vector3d { return v0.segment<3>(3 * i); });
+  const std::vector<double> first_start = to_angles([&](Index i) -> Eigen::Vector3d {
+    return from ? Eigen::Vector3d(from->normals.row(i).transpose()) : Eigen::Vector3d(v0.segment<3>(3 * i));
+  });
   {
-    std::vector<double> gradient(eigen_start.size());
-    NormalEnergy(s).evaluate(eigen_start.data(), &result.summary.initial_energy, gradient.data());
+    std::vector<double> gradient(first_start.size());
+    NormalEnergy(s).evaluate(first_start.data(), &result.summary.initial_energy, gradient.data());
   }
-  Candidate best = optimum(eigen_start, 0);
-  if (!best.closed) {
+  Candidate best = optimum(first_start, 0);
+  if (!best.closed && !from) {
     const Eigen::Vector3d centroid = x.colwise().mean().transpose();
     const Eigen::MatrixX3d centred = x.rowwise() - centroid.transpose();
     const Eigen::Matrix3d shape =

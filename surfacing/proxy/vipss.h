@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "surfacing/progress.h"
 
@@ -50,7 +51,8 @@ class HermiteRbf {
 /// What the VIPSS solve did (Ceres-style summary), with per-step wall-clock seconds.
 struct VipssSummary {
   std::size_t points = 0;        ///< n
-  double initial_energy = 0.0;   ///< g^T H g at the normalised smallest eigenvector of H
+  double initial_energy = 0.0;   ///< g^T H g at the normalised smallest eigenvector of H (or at
+                                 ///< the given start's normals)
   double final_energy = 0.0;     ///< g^T H g at the optimised unit normals
   int eigen_matvecs = 0;         ///< Lanczos products with H^-1 for the initial normals
   int lbfgs_iterations = 0;      ///< L-BFGS iterations, both starts
@@ -67,6 +69,12 @@ struct VipssResult {
   VipssSummary summary;
 };
 
+/// Normals to start VIPSS's optimisation from, some of them kept as they are.
+struct VipssStart {
+  Eigen::MatrixX3d normals;  ///< #n x 3 unit normals
+  std::vector<char> fixed;   ///< #n flags: these normals are not optimised
+};
+
 /// VIPSS on unoriented points (#n x 3, n >= 5, not all on one plane).
 ///
 /// Unknowns: a value and a gradient per point. With the saddle matrix A = [[M, N], [N^T, 0]] (M the
@@ -79,10 +87,12 @@ struct VipssResult {
 /// initial normals; L-BFGS over spherical angles from them and from the outward normals of the
 /// points' inertia ellipsoid gives two local optima; the one whose zero set closes inside the
 /// padded box is kept, else the lower energy; and the gradient coefficients are
-/// b = H g, the value ones a back-substitution.
-/// @throws Error (Usage) for invalid options; Error (Processing) when the points are too few,
-///         (nearly) coplanar, or the system is not positive definite; Error (Cancelled).
+/// b = H g, the value ones a back-substitution. With `start`, the optimisation runs once, from its
+/// normals, with its fixed ones kept (no eigenvector, no second start).
+/// @throws Error (Usage) for invalid options or a start without one normal and one flag a point;
+///         Error (Processing) when the points are too few, (nearly) coplanar, or the system is not
+///         positive definite; Error (Cancelled).
 VipssResult solve_vipss(const Eigen::MatrixX3d& points, const VipssOptions& options,
-                        const Progress& progress = {});
+                        const Progress& progress = {}, const VipssStart* start = nullptr);
 
 }  // namespace sketchsurf

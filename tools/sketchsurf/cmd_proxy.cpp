@@ -67,6 +67,7 @@ nlohmann::json report_json(const ProxyReport& r, const SurfaceReport& prepared,
                   {"window_bumps", r.windows},
                   {"bridges", r.bridges},
                   {"necks_cut", r.necks},
+                  {"part_normals", r.part_normals},
                   {"confine_radius", r.confine_radius},
                   {"termination", r.vipss.termination},
                   {"evaluations", r.evaluations}};

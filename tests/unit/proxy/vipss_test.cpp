@@ -177,6 +177,35 @@ TEST(Vipss, InterpolatesPointsWithUnitNormals) {
   EXPECT_TRUE(outward == 200 || outward == 0) << outward;
 }
 
+// From a start, the fixed normals are kept as given (the interpolant's gradient there), the free
+// ones optimised from theirs: no more energy than the start.
+TEST(Vipss, AStartKeepsItsFixedNormals) {
+  const Eigen::MatrixX3d x = blob_points(120, 5);
+  VipssStart start;
+  start.normals = x.rowwise().normalized();
+  start.fixed.assign(120, 0);
+  const Eigen::AngleAxisd tilt(0.5, Eigen::Vector3d::UnitZ());
+  for (int i = 0; i < 120; i += 3) {
+    start.normals.row(i) = (tilt * Eigen::Vector3d(start.normals.row(i).transpose())).transpose();
+    start.fixed[static_cast<std::size_t>(i)] = 1;
+  }
+  const VipssResult r = solve_vipss(x, {}, {}, &start);
+  double moved = 0.0;
+  for (int i = 0; i < 120; ++i) {
+    Eigen::Vector3d grad;
+    EXPECT_NEAR(r.function.value_gradient(x.row(i).transpose(), &grad), 0.0, 1e-8);
+    EXPECT_NEAR((grad - r.normals.row(i).transpose()).norm(), 0.0, 1e-6);
+    if (start.fixed[static_cast<std::size_t>(i)])
+      EXPECT_NEAR((r.normals.row(i) - start.normals.row(i)).norm(), 0.0, 1e-12) << i;
+    else
+      moved = std::max(moved, (r.normals.row(i) - start.normals.row(i)).norm());
+  }
+  EXPECT_GT(moved, 0.01) << "the free normals were optimised";
+  EXPECT_LE(r.summary.final_energy, r.summary.initial_energy);
+  start.fixed.pop_back();
+  EXPECT_THROW(solve_vipss(x, {}, {}, &start), Error);
+}
+
 TEST(Vipss, GradientMatchesFiniteDifferences) {
   const VipssResult r = solve_vipss(blob_points(60, 11), {});
   const Eigen::Vector3d p(0.05, -0.1, 0.2);
