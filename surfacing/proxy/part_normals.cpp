@@ -17,6 +17,7 @@ PartNormals part_normals(const HermiteRbf& f, double scale, const Eigen::MatrixX
   out.normals = Eigen::MatrixX3d::Zero(n, 3);
   out.known.assign(static_cast<std::size_t>(n), 0);
   out.web.assign(static_cast<std::size_t>(n), 0);
+  out.between.assign(static_cast<std::size_t>(n), 0);
   const double most_gap = search.gap * M_PI / 180.0;
   parallel_for(0, out.known.size(), search.threads, [&](std::size_t ii) {
     const auto i = static_cast<Eigen::Index>(ii);
@@ -60,21 +61,15 @@ PartNormals part_normals(const HermiteRbf& f, double scale, const Eigen::MatrixX
     const double clear = search.clear * search.ahead;
     const auto [nearest, d2] = strokes.nearest(front);
     out.web[ii] = nearest >= 0 && d2 >= clear * clear && scale * f.value(front) < 0.0;
+    if (!out.web[ii]) return;
+    // Another part ahead: strokes in the cone round the normal beyond the web's point (none below
+    // a foot or a belly that the surface bulges past).
+    const double cone = std::cos(search.cone * M_PI / 180.0);
+    strokes.for_each_within(p, search.between, [&](int k, double) {
+      const Eigen::Vector3d d = stroke_points.row(k).transpose() - p;
+      if (d.dot(normal) > search.ahead && d.dot(normal) >= cone * d.norm()) out.between[ii] = 1;
+    });
   });
-  // A web lies between parts: another web sample in front of each, facing it.
-  std::vector<char>& facing = out.facing;
-  facing.assign(out.web.size(), 0);
-  const double opposed = -std::cos(search.facing_angle * M_PI / 180.0);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (!out.web[static_cast<std::size_t>(i)]) continue;
-    for (Eigen::Index j = 0; j < n && !facing[static_cast<std::size_t>(i)]; ++j) {
-      if (!out.web[static_cast<std::size_t>(j)]) continue;
-      const Eigen::Vector3d d = (samples.row(j) - samples.row(i)).transpose();
-      facing[static_cast<std::size_t>(i)] = d.norm() <= search.facing &&
-                                            d.dot(out.normals.row(i).transpose()) > 0.0 &&
-                                            out.normals.row(i).dot(out.normals.row(j)) <= opposed;
-    }
-  }
   return out;
 }
 

@@ -24,8 +24,8 @@ struct PartSearch {
                          ///< median distance from the axis
   double ahead = 0.03;   ///< a web in front of the sample: the point this far along its normal
   double clear = 0.7;    ///< ... has no stroke within this times `ahead` and is inside
-  double facing = 0.5;   ///< a web sample is facing when another lies within this in front
-  double facing_angle = 120.0;  ///< ... with a normal at least this many degrees from its own
+  double between = 0.5;  ///< the web lies between parts when strokes lie ahead within this,
+  double cone = 45.0;    ///< ... within this many degrees of the sample's normal
   unsigned threads = 0;  ///< worker threads (0 = all); never changes the result
 };
 
@@ -36,9 +36,8 @@ struct PartNormals {
                              ///< inside the surface (outside it, the place is concave)
   std::vector<char> web;     ///< #n: known, and the space in front of the sample, clear of
                              ///< strokes, is inside the surface
-  std::vector<char> facing;  ///< #n: web, and another web sample in front faces it: the web lies
-                             ///< between two parts (in front of a foot's or a plate's rim, the
-                             ///< surface's own bulge)
+  std::vector<char> between;  ///< #n: web, with strokes ahead (another part): the web lies
+                              ///< between two parts (not a bulge of the surface below a foot)
 };
 
 /// The normals of the thin parts at `samples` (#n x 3) from the stroke points near them

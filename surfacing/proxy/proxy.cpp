@@ -1106,12 +1106,12 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     r.polygonize_seconds += seconds_since(t);
   }
   // Thin parts webbed together (a chair's legs into a skirt, a torch's handle into a sail): where
-  // the strokes round samples surround axes and the space in front of them, clear of strokes and
-  // between samples that face each other, lies inside the surface, VIPSS's normals are those of a
-  // blob round the parts (part_normals.h). Solved again with the parts' normals kept and the
-  // normals near the webs free to follow; kept when much less of the surface lies far from every
-  // stroke (the web was such surface), without more than one handle more or another part. Not
-  // where the strokes frame no surface (far_most).
+  // the strokes round samples surround axes and the space in front of them, clear of strokes with
+  // another part's strokes ahead, lies inside the surface, VIPSS's normals are those of a blob
+  // round the parts (part_normals.h). Solved again with the parts' normals kept and the normals
+  // near the webs free to follow; kept when much less of the surface lies far from every stroke
+  // (the web was such surface), without more than one handle more or another part. Not where the
+  // strokes frame no surface (far_most).
   if (options.part_reach > 0.0 && kept.mesh.F.rows() > 0 && kept.far <= options.far_most) {
     const auto t = Clock::now();
     const Eigen::MatrixX3d& at = kept.samples == static_cast<std::size_t>(samples.rows()) ? samples : dense;
@@ -1120,7 +1120,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     search_parts.threads = threads;
     const PartNormals parts = part_normals(kept.vipss->function, kept.field->scale(), at,
                                            stroke_points, stroke_grid, search_parts);
-    const auto webs = static_cast<std::size_t>(std::count(parts.facing.begin(), parts.facing.end(), 1));
+    const auto webs = static_cast<std::size_t>(std::count(parts.between.begin(), parts.between.end(), 1));
     r.polygonize_seconds += seconds_since(t);
     if (webs >= options.part_webs) {
       VipssStart from;
@@ -1138,7 +1138,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       }
       Candidate c = solve(kept.lambda, at, &from);
       if (c.mesh.F.rows() > 0 && c.genus <= kept.genus + 1 && c.components <= kept.components &&
-          c.far <= options.part_far_ratio * kept.far) {
+          c.far <= options.part_far_ratio * kept.far && c.far + options.far_tie <= kept.far) {
         kept = std::move(c);
         r.part_normals = static_cast<std::size_t>(std::count(parts.known.begin(), parts.known.end(), 1));
       }

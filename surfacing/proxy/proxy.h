@@ -157,20 +157,22 @@ struct ProxyOptions {
                                 ///< stroke crosses the neck: two parts drawn apart that VIPSS
                                 ///< merged. Kept when it splits the surface or removes handles
                                 ///< and loses no part
-  double part_reach = 0.04;      ///< thin parts webbed together (a chair's legs into a skirt, a
+  double part_reach = 0.04;     ///< thin parts webbed together (a chair's legs into a skirt, a
                                 ///< torch's handle into a sail) are told at the samples whose
                                 ///< stroke points within this (fraction of diagonal; 0 = off)
-                                ///< surround an axis inside the surface, on a round section
-                                ///< (part_normals.h), with the space in front of them inside too
-  std::size_t part_webs = 4;    ///< ... at this many samples or more, VIPSS is solved again with
-                                ///< the parts' normals kept (outward from their axes) ...
-  double part_free = 0.1;       ///< ... and the normals within this of those samples (fraction of
-                                ///< diagonal) free to follow, the others kept ...
+                                ///< surround an axis inside the surface on a round section, and
+                                ///< where the space in front of such a sample is inside too, with
+                                ///< another part's strokes ahead (part_normals.h)
+  std::size_t part_webs = 4;    ///< ... at this many such samples or more, VIPSS is solved again
+                                ///< with the parts' normals kept (outward from their axes) ...
+  double part_free = 0.1;       ///< ... and the normals within this of a web's samples (fraction
+                                ///< of diagonal) free to follow, the others kept ...
   double part_far_ratio = 0.8;  ///< ... and that solve is kept when its area far from every
-                                ///< stroke (far_distance) is at most this times the other's (the
-                                ///< web was such area: a chair's 0.17, a torch's 0.68; rims and
-                                ///< double walls that look like thin parts, 0.87 and more), with
-                                ///< at most one handle more and no other part
+                                ///< stroke (far_distance) is at most this times the other's and
+                                ///< smaller by far_tie (the web was such area: a chair's 0.17, a
+                                ///< torch's 0.68; rims and double walls that look like thin
+                                ///< parts, 0.87 and more), with at most one handle more and no
+                                ///< other part
   double min_component = 0.01;  ///< parts of the polygonised surface with less than this fraction
                                 ///< of its area are dropped (specks the confinement cuts off)
   double vipss_tolerance = 1e-7;  ///< L-BFGS relative energy change at which the normals are

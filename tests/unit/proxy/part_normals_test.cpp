@@ -1,5 +1,5 @@
 // Thin parts' normals from their strokes: outward from a tube's axis, webs told where the surface
-// holds the space in front of a sample and between parts that face each other, nothing on a flat
+// holds the space in front of a sample, between parts where another lies ahead, nothing on a flat
 // face or where the axis lies outside.
 
 #include "surfacing/proxy/part_normals.h"
@@ -81,12 +81,12 @@ TEST(PartNormals, TwoTubesInOneBlobPointAwayFromTheirAxesAndTheWebIsBetweenThem)
   EXPECT_FALSE(parts.web[1]);
   EXPECT_TRUE(parts.web[3]);
   EXPECT_FALSE(parts.web[4]);
-  EXPECT_TRUE(parts.facing[0] && parts.facing[3]) << "the inner sides face each other";
+  EXPECT_TRUE(parts.between[0] && parts.between[3]) << "the other tube lies ahead of each";
 }
 
-// One tube in a blob wider than it on one side: the web in front of its side faces nothing (a
-// bulge of the surface, not a web between parts).
-TEST(PartNormals, AWebInFrontOfOnePartFacesNothing) {
+// One tube in a blob wider than it on one side: the web in front of its side has no other part
+// ahead (a bulge of the surface, not a web between parts).
+TEST(PartNormals, AWebWithNoPartAheadIsNotBetweenParts) {
   std::vector<Eigen::Vector3d> strokes;
   add_tube(strokes, -0.1, 0.02, 0.2);
   const Eigen::MatrixX3d stroke_points = to_matrix(strokes);
@@ -96,7 +96,7 @@ TEST(PartNormals, AWebInFrontOfOnePartFacesNothing) {
       part_normals(blob.f, blob.scale, to_matrix({{-0.08, 0.0, 0.0}, {-0.08, 0.05, 0.0}}),
                    stroke_points, grid, {});
   EXPECT_TRUE(parts.web[0] && parts.web[1]);
-  EXPECT_FALSE(parts.facing[0] || parts.facing[1]);
+  EXPECT_FALSE(parts.between[0] || parts.between[1]);
 }
 
 // A flat face drawn as a grid of lines is no thin part: its section is not round.
