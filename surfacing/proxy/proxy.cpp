@@ -1110,9 +1110,10 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // another part's strokes ahead, lies inside the surface, VIPSS's normals are those of a blob
   // round the parts (part_normals.h). Solved again with the parts' normals kept and the normals
   // near the webs free to follow; kept when much less of the surface lies far from every stroke
-  // (the web was such surface), without more than one handle more or another part. Not where the
-  // strokes frame no surface (far_most).
-  if (options.part_reach > 0.0 && kept.mesh.F.rows() > 0 && kept.far <= options.far_most) {
+  // (the web was such surface), without more than one handle more or another part. Also where
+  // most of the surface lies far from every stroke: a web can be most of it (a lamp's pole
+  // spread into a wall down to its base).
+  if (options.part_reach > 0.0 && kept.mesh.F.rows() > 0) {
     const auto t = Clock::now();
     const Eigen::MatrixX3d& at = kept.samples == static_cast<std::size_t>(samples.rows()) ? samples : dense;
     PartSearch search_parts;
