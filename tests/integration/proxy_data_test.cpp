@@ -13,9 +13,13 @@
 #include "surfacing/proxy/attract.h"
 #include "surfacing/proxy/proxy.h"
 #include "surfacing/sketch/io/sketch_io.h"
+#include "tests/support/sections.h"
 
 namespace sketchsurf {
 namespace {
+
+using testing::section_loops;
+using testing::section_width;
 
 std::vector<std::string> sketches() {
 #ifdef PROXY_DATA_ALL
@@ -93,40 +97,6 @@ Sketch prepared(const std::string& name) {
   return sketch;
 }
 
-// Loops of the mesh's section by the plane y = height: the faces that the plane cuts, joined
-// across the edges it cuts.
-std::size_t section_loops(const TriMesh& mesh, double height) {
-  const auto above = [&](OpenMesh::VertexHandle v) { return mesh.point(v)[1] > height; };
-  std::vector<int> root(mesh.n_faces());
-  for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
-  const auto find = [&](int f) {
-    while (root[static_cast<std::size_t>(f)] != f) f = root[static_cast<std::size_t>(f)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(f)])];
-    return f;
-  };
-  std::vector<char> cut(mesh.n_faces(), 0);
-  for (const auto e : mesh.edges()) {
-    const auto h = e.h0();
-    if (above(h.from()) == above(h.to()) || !h.face().is_valid() || !h.opp().face().is_valid()) continue;
-    cut[static_cast<std::size_t>(h.face().idx())] = cut[static_cast<std::size_t>(h.opp().face().idx())] = 1;
-    root[static_cast<std::size_t>(find(h.face().idx()))] = find(h.opp().face().idx());
-  }
-  std::size_t loops = 0;
-  for (std::size_t f = 0; f < root.size(); ++f) loops += cut[f] && find(static_cast<int>(f)) == static_cast<int>(f);
-  return loops;
-}
-
-// Diagonal of the bounding box of the mesh's section by the plane y = height (the points where
-// its edges cross the plane).
-double section_width(const TriMesh& mesh, double height) {
-  BoundingBox box;
-  for (const auto e : mesh.edges()) {
-    const Eigen::Vector3d a = to_eigen(mesh.point(e.v0())), b = to_eigen(mesh.point(e.v1()));
-    if ((a.y() > height) == (b.y() > height)) continue;
-    box.extend(a + (height - a.y()) / (b.y() - a.y()) * (b - a));
-  }
-  return box.diagonal();
-}
-
 TEST(ProxyShapeData, ALampsPoleIsNotWebbedToItsBase) {
   // cassie/10-0-1: a desk lamp, a long arched pole (a line with a zigzag wound round it) between
   // a round base and a shade. VIPSS's smoothest normals spread the pole into a wall down to the
@@ -137,9 +107,11 @@ TEST(ProxyShapeData, ALampsPoleIsNotWebbedToItsBase) {
   ProxyReport report;
   const TriMesh proxy = make_proxy(sketch, {}, {}, &report);
   const BoundingBox box = sketch.bounding_box();
-  for (const double t : {0.3, 0.4, 0.5, 0.6})
-    EXPECT_LT(section_width(proxy, box.min.y() + t * (box.max.y() - box.min.y())), 0.07 * box.diagonal())
-        << "at " << t;
+  for (const double t : {0.3, 0.4, 0.5, 0.6}) {
+    const double height = box.min.y() + t * (box.max.y() - box.min.y());
+    EXPECT_EQ(section_loops(proxy, height), 1u) << "at " << t;
+    EXPECT_LT(section_width(proxy, height), 0.07 * box.diagonal()) << "at " << t;
+  }
   EXPECT_GT(report.part_normals, 0u);
   EXPECT_LT(area_farther_than(proxy, sketch, 0.11 * box.diagonal()), 0.005);
   EXPECT_EQ(mesh_topology(proxy).components, 1u);

@@ -7,7 +7,7 @@
 // a lamp's cable and its plug, a torch's ring on a string, and an espresso machine's two dots are
 // left out of the surface (the machine's cap then does not pass through itself); a
 // shield's back drawn by its rim comes out as a cap, not folded; a dress drawn as sections comes
-// out as a tube lofted through them.
+// out as a tube lofted through them; a lamp's pole is not spread into a wall.
 
 #include <gtest/gtest.h>
 
@@ -19,6 +19,7 @@
 #include "surfacing/pipeline.h"
 #include "surfacing/sketch/io/sketch_io.h"
 #include "surfacing/sketch/openings.h"
+#include "tests/support/sections.h"
 
 namespace sketchsurf {
 namespace {
@@ -150,6 +151,22 @@ TEST(TieData, AShieldsBackDrawnByItsRimAndOneMeridianIsNotFolded) {
   EXPECT_LE(e[summary.best_restart], (1.0 + Params().segment.fold) * lowest);
   ASSERT_EQ(summary.restart_departures.size(), e.size());
   EXPECT_LT(summary.restart_departures[summary.best_restart], 0.1);
+}
+
+TEST(ThinPartData, ALampsPoleIsNotAWall) {
+  // cassie/10-0-1: a desk lamp whose long arched pole (a line with a zigzag wound round it) the
+  // proxy spread into a wall down to the base, and the surface kept it (sections 0.12-0.22 of the
+  // diagonal wide). Now the pole is a tube (pinched to a line over a short stretch, at 0.4 of the
+  // height, where its region's model fits the axis stroke): cut across between the base and the
+  // shade, the surface is one narrow section.
+  const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "cassie" / "10-0-1.curves");
+  const SurfaceResult r = Surfacer().run(sketch);
+  const BoundingBox box = sketch.bounding_box();
+  for (const double t : {0.3, 0.4, 0.5, 0.6}) {
+    const double height = box.min.y() + t * (box.max.y() - box.min.y());
+    EXPECT_EQ(testing::section_loops(r.mesh, height), 1u) << "at " << t;
+    EXPECT_LT(testing::section_width(r.mesh, height), 0.07 * box.diagonal()) << "at " << t;
+  }
 }
 
 TEST(SectionData, ADressDrawnAsSectionsIsALoftedTube) {
