@@ -1,6 +1,7 @@
 // `sketchsurf review`: one contact sheet per result (3 x 2 pictures of the requested size) and an
 // index page with the checks; a result without its sketch is listed as failed (exit 4). Its
-// outputs are checked before any work and written together, as every command's.
+// outputs are checked before any work and written together, as every command's. A batch's output
+// folder is reviewed as it is: its subfolders searched, its summary naming the sketches.
 
 #include <gtest/gtest.h>
 
@@ -88,6 +89,40 @@ TEST(ReviewCli, OutputsAreCheckedBeforeAnyWorkAndNoneIsChangedOnRefusal) {
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(render::read_png(dir / "out" / "cube.png").width, 3 * 64 + 2 * 4);
   EXPECT_GT(fs::file_size(dir / "out" / "index.html"), 500u);
+}
+
+TEST(ReviewCli, ABatchsOutputFolderIsReviewedWithTheSketchesItsSummaryNames) {
+  // `sketchsurf batch` keeps the input folders' structure and writes a report NAME.json beside
+  // each result (not a sketch); summary.json names each result's sketch.
+  const fs::path dir = testing::scratch_dir("sketchsurf_review_batch_");
+  const TriMesh mesh = testing::rounded_box_mesh(2, Eigen::Vector3d(0.5, 0.5, 0.5), 0.05);
+  fs::create_directories(dir / "sketches" / "boxes");
+  write_sketch(testing::cube_sketch(), dir / "sketches" / "boxes" / "cube.curves");
+  fs::create_directories(dir / "batch" / "boxes");
+  write_mesh(mesh, dir / "batch" / "boxes" / "cube.ply");
+  std::ofstream(dir / "batch" / "boxes" / "cube.json") << "{\"regions\": 1}\n";
+  std::ofstream(dir / "batch" / "summary.json")
+      << "[{\"sketch\": \"" << (dir / "sketches" / "boxes" / "cube.curves").generic_string()
+      << "\", \"output\": \"boxes/cube.ply\", \"status\": \"ok\"}]\n";
+  const std::string out = testing::quoted(dir / "out");
+  auto run = testing::run_cli("review " + testing::quoted(dir / "batch") + " -o " + out + " --tile 64", dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(render::read_png(dir / "out" / "boxes" / "cube.png").width, 3 * 64 + 2 * 4);
+  std::ifstream in(dir / "out" / "index.html");
+  std::stringstream html;
+  html << in.rdbuf();
+  EXPECT_NE(html.str().find("boxes/cube.png"), std::string::npos);
+  EXPECT_NE(html.str().find("cube.curves"), std::string::npos);
+  // Without the summary, --sketches finds it at the same place under its folder.
+  fs::remove(dir / "batch" / "summary.json");
+  run = testing::run_cli("review " + testing::quoted(dir / "batch") + " -o " + out + " --tile 64 --sketches " +
+                             testing::quoted(dir / "sketches"),
+                         dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  // Neither: the report beside the result is no sketch, and the error says what to do.
+  run = testing::run_cli("review " + testing::quoted(dir / "batch") + " -o " + out + " --tile 64", dir);
+  EXPECT_EQ(run.exit_code, 4) << run.err;
+  EXPECT_NE(run.err.find("set --sketches"), std::string::npos) << run.err;
 }
 
 }  // namespace

@@ -1,10 +1,14 @@
 // sketchsurf review DIR|MESHES... -o OUTDIR: one contact sheet per result and an index page with
-// the shape checks, for a person judging results by eye.
+// the shape checks, for a person judging results by eye. A folder is searched with its
+// subfolders, so a batch's output folder is reviewed as it is, its summary naming the sketches.
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "engine/render/sheet.h"
@@ -28,19 +32,56 @@ struct ReviewCommandOptions {
   render::SheetOptions sheet;
 };
 
-// The result meshes named: .ply files, and the .ply files of named folders (sorted).
-std::vector<fs::path> result_meshes(const std::vector<std::string>& inputs) {
-  std::vector<fs::path> out;
+// A result to review: its mesh, the name it is listed by (its path under the folder named, without
+// the extension) and its sketch when a batch's summary names it.
+struct ResultMesh {
+  fs::path mesh;
+  fs::path name;
+  std::optional<fs::path> sketch;
+};
+
+// The sketch of each result in a folder that `sketchsurf batch` wrote (its summary.json: output,
+// relative to the folder -> sketch); empty when the folder has no summary.
+std::map<fs::path, fs::path> batch_sketches(const fs::path& folder) {
+  const fs::path file = folder / "summary.json";
+  std::map<fs::path, fs::path> out;
+  if (!fs::is_regular_file(file)) return out;
+  nlohmann::json rows;
+  try {
+    std::ifstream in(file);
+    rows = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error::input(file, std::string("not a batch summary: ") + e.what());
+  }
+  if (!rows.is_array()) throw Error::input(file, "not a batch summary: not a list of results");
+  for (const nlohmann::json& row : rows)
+    if (row.is_object() && row.contains("output") && row["output"].is_string() && row.contains("sketch") &&
+        row["sketch"].is_string())
+      out[fs::path(row["output"].get<std::string>()).lexically_normal()] = row["sketch"].get<std::string>();
+  return out;
+}
+
+// The results named: .ply files, and the .ply files in named folders and their subfolders (sorted).
+std::vector<ResultMesh> result_meshes(const std::vector<std::string>& inputs) {
+  std::vector<ResultMesh> out;
   for (const std::string& input : inputs) {
     if (fs::is_directory(input)) {
-      std::vector<fs::path> found;
-      for (const auto& entry : fs::directory_iterator(input))
-        if (entry.is_regular_file() && entry.path().extension() == ".ply") found.push_back(entry.path());
-      if (found.empty()) throw Error::input(input, "no .ply result mesh in this folder");
-      std::sort(found.begin(), found.end());
+      const std::map<fs::path, fs::path> sketches = batch_sketches(input);
+      std::vector<ResultMesh> found;
+      for (const auto& entry : fs::recursive_directory_iterator(input)) {
+        if (!entry.is_regular_file() || entry.path().extension() != ".ply") continue;
+        const fs::path relative = entry.path().lexically_relative(input);
+        ResultMesh result{entry.path(), fs::path(relative).replace_extension(), std::nullopt};
+        if (const auto it = sketches.find(relative.lexically_normal()); it != sketches.end())
+          result.sketch = it->second;
+        found.push_back(std::move(result));
+      }
+      if (found.empty()) throw Error::input(input, "no .ply result mesh in this folder or its subfolders");
+      std::sort(found.begin(), found.end(),
+                [](const ResultMesh& a, const ResultMesh& b) { return a.mesh < b.mesh; });
       out.insert(out.end(), found.begin(), found.end());
     } else if (fs::is_regular_file(input)) {
-      out.emplace_back(input);
+      out.push_back({fs::path(input), fs::path(input).stem(), std::nullopt});
     } else {
       throw Error::input(input, "no such file or folder");
     }
@@ -55,6 +96,17 @@ std::optional<fs::path> find_sketch(const fs::path& mesh, const fs::path& folder
     if (fs::is_regular_file(candidate) && candidate != mesh) return candidate;
   }
   return std::nullopt;
+}
+
+// Where a result's sketch is: under --sketches (at the result's place in its folder, else at the
+// top), else the one its batch's summary names, else beside it.
+std::optional<fs::path> result_sketch(const ResultMesh& result, const std::string& sketches) {
+  if (!sketches.empty()) {
+    if (auto found = find_sketch(result.mesh, fs::path(sketches) / result.name.parent_path())) return found;
+    return find_sketch(result.mesh, sketches);
+  }
+  if (result.sketch) return fs::is_regular_file(*result.sketch) ? result.sketch : std::nullopt;
+  return find_sketch(result.mesh, result.mesh.parent_path());
 }
 
 std::string html_escape(const std::string& text) {
@@ -116,7 +168,7 @@ void write_index(const fs::path& file, const std::vector<ReviewRow>& rows) {
 void run_review(const ReviewCommandOptions& opt, const GlobalOptions& global) {
   if (opt.sheet.tile < 64 || opt.sheet.tile > 2048)
     throw Error::usage("--tile: the picture size must be between 64 and 2048 pixels");
-  const std::vector<fs::path> meshes = result_meshes(opt.inputs);
+  const std::vector<ResultMesh> meshes = result_meshes(opt.inputs);
   // Every output is known before any work: a contact sheet per result and the index. The
   // folder is made first, so that RunFiles can check the outputs in it.
   std::error_code ec;
@@ -127,16 +179,19 @@ void run_review(const ReviewCommandOptions& opt, const GlobalOptions& global) {
   std::vector<ReviewRow> rows(meshes.size());
   std::vector<std::optional<fs::path>> sketch_files(meshes.size());
   for (std::size_t i = 0; i < meshes.size(); ++i) {
-    const fs::path folder = opt.sketches.empty() ? meshes[i].parent_path() : fs::path(opt.sketches);
-    sketch_files[i] = find_sketch(meshes[i], folder);
-    files.input(meshes[i].string());
+    sketch_files[i] = result_sketch(meshes[i], opt.sketches);
+    files.input(meshes[i].mesh.string());
     if (sketch_files[i]) files.input(sketch_files[i]->string());
-    rows[i].name = meshes[i].stem().string();
+    rows[i].name = meshes[i].name.generic_string();
     rows[i].picture = rows[i].name + ".png";
   }
   const fs::path index = fs::path(opt.output) / "index.html";
   files.output("-o", index.string());
-  for (const ReviewRow& row : rows) files.output("-o", (fs::path(opt.output) / row.picture).string());
+  for (const ReviewRow& row : rows) {
+    const fs::path picture = fs::path(opt.output) / row.picture;
+    fs::create_directories(picture.parent_path(), ec);  // a subfolder's results: the same subfolder
+    files.output("-o", picture.string());
+  }
 
   vk::ContextOptions context_options;
   context_options.log = [&global](const std::string& text) {
@@ -147,19 +202,30 @@ void run_review(const ReviewCommandOptions& opt, const GlobalOptions& global) {
   std::size_t failed = 0;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     if (cancel_requested()) break;  // commit() says so
-    const fs::path& mesh_file = meshes[i];
+    const fs::path& mesh_file = meshes[i].mesh;
     ReviewRow& row = rows[i];
     if (!global.quiet)
       std::cerr << "review: [" << i + 1 << "/" << meshes.size() << "] " << mesh_file.string() << "\n";
     try {
       if (!sketch_files[i])
-        throw Error::input(mesh_file, "no sketch named " + row.name + ".(json|curves|tilt|obj) in '" +
-                                          (opt.sketches.empty() ? mesh_file.parent_path().string()
-                                                                : opt.sketches) +
-                                          "' (set --sketches)");
+        throw Error::input(mesh_file, meshes[i].sketch && opt.sketches.empty()
+                                          ? "its batch summary names the sketch " + meshes[i].sketch->string() +
+                                                ", which is not there (set --sketches)"
+                                          : "no sketch named " + mesh_file.stem().string() +
+                                                ".(json|curves|tilt|obj) in '" +
+                                                (opt.sketches.empty() ? mesh_file.parent_path().string()
+                                                                      : opt.sketches) +
+                                                "' (set --sketches)");
       row.sketch = sketch_files[i]->string();
       Warnings warnings;
-      const Sketch sketch = read_sketch(*sketch_files[i], &warnings);
+      Sketch sketch;
+      try {
+        sketch = read_sketch(*sketch_files[i], &warnings);
+      } catch (const Error& e) {  // e.g. a batch's report beside its result, taken for the sketch
+        if (e.kind() != ErrorKind::Input) throw;
+        throw Error::input(mesh_file, std::string("its sketch could not be read (") + e.what() +
+                                          "); set --sketches to the folder of the sketches");
+      }
       MeshAttributes attributes;
       const TriMesh mesh = read_mesh(mesh_file, &attributes);
       const bool open = std::any_of(sketch.strokes.begin(), sketch.strokes.end(),
@@ -190,10 +256,14 @@ void run_review(const ReviewCommandOptions& opt, const GlobalOptions& global) {
 void add_review_command(CLI::App& app, const GlobalOptions& global) {
   auto opt = std::make_shared<ReviewCommandOptions>();
   auto* cmd = app.add_subcommand("review", "Contact sheets of results and an index page with the shape checks");
-  cmd->add_option("RESULTS", opt->inputs, "Result meshes (.ply) or folders of them")->required();
+  cmd->add_option("RESULTS", opt->inputs,
+                  "Result meshes (.ply) or folders of them (with their subfolders: a batch's output folder)")
+      ->required();
   cmd->add_option("-o,--output", opt->output, "Folder for the pictures and index.html")->required();
   cmd->add_option("--sketches", opt->sketches,
-                  "Folder of the sketches (NAME.json|curves|tilt|obj for NAME.ply); default: beside each result");
+                  "Folder of the sketches (NAME.json|curves|tilt|obj for NAME.ply, in the same subfolder "
+                  "as the result or at the top); default: those a batch's summary.json names, else beside "
+                  "each result");
   cmd->add_option("--tile", opt->sheet.tile, "Pixels per picture (6 per sheet)")->capture_default_str();
   cmd->callback([opt, &global] { run_review(*opt, global); });
 }
