@@ -19,6 +19,7 @@ PartNormals part_normals(const HermiteRbf& f, double scale, const Eigen::MatrixX
   out.web.assign(static_cast<std::size_t>(n), 0);
   out.between.assign(static_cast<std::size_t>(n), 0);
   const double most_gap = search.gap * M_PI / 180.0;
+  const double cone = std::cos(search.cone * M_PI / 180.0);
   parallel_for(0, out.known.size(), search.threads, [&](std::size_t ii) {
     const auto i = static_cast<Eigen::Index>(ii);
     const Eigen::Vector3d p = samples.row(i).transpose();
@@ -64,7 +65,6 @@ PartNormals part_normals(const HermiteRbf& f, double scale, const Eigen::MatrixX
     if (!out.web[ii]) return;
     // Another part ahead: strokes in the cone round the normal beyond the web's point (none below
     // a foot or a belly that the surface bulges past).
-    const double cone = std::cos(search.cone * M_PI / 180.0);
     strokes.for_each_within(p, search.between, [&](int k, double) {
       const Eigen::Vector3d d = stroke_points.row(k).transpose() - p;
       if (d.dot(normal) > search.ahead && d.dot(normal) >= cone * d.norm()) out.between[ii] = 1;

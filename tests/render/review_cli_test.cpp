@@ -113,6 +113,13 @@ TEST(ReviewCli, ABatchsOutputFolderIsReviewedWithTheSketchesItsSummaryNames) {
   html << in.rdbuf();
   EXPECT_NE(html.str().find("boxes/cube.png"), std::string::npos);
   EXPECT_NE(html.str().find("cube.curves"), std::string::npos);
+  // The Python package's batch names the output by its whole path.
+  std::ofstream(dir / "batch" / "summary.json")
+      << "[{\"sketch\": \"" << (dir / "sketches" / "boxes" / "cube.curves").generic_string()
+      << "\", \"output\": \"" << (dir / "batch" / "boxes" / "cube.ply").generic_string()
+      << "\", \"status\": \"ok\"}]\n";
+  run = testing::run_cli("review " + testing::quoted(dir / "batch") + " -o " + out + " --tile 64", dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
   // Without the summary, --sketches finds it at the same place under its folder.
   fs::remove(dir / "batch" / "summary.json");
   run = testing::run_cli("review " + testing::quoted(dir / "batch") + " -o " + out + " --tile 64 --sketches " +

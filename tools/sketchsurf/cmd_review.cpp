@@ -40,8 +40,9 @@ struct ResultMesh {
   std::optional<fs::path> sketch;
 };
 
-// The sketch of each result in a folder that `sketchsurf batch` wrote (its summary.json: output,
-// relative to the folder -> sketch); empty when the folder has no summary.
+// The sketch of each result in a folder that a batch wrote (its summary.json, from `sketchsurf
+// batch` or the Python package's: output, relative to the folder or not -> sketch), keyed by the
+// output's absolute path; empty when the folder has no summary.
 std::map<fs::path, fs::path> batch_sketches(const fs::path& folder) {
   const fs::path file = folder / "summary.json";
   std::map<fs::path, fs::path> out;
@@ -57,7 +58,8 @@ std::map<fs::path, fs::path> batch_sketches(const fs::path& folder) {
   for (const nlohmann::json& row : rows)
     if (row.is_object() && row.contains("output") && row["output"].is_string() && row.contains("sketch") &&
         row["sketch"].is_string())
-      out[fs::path(row["output"].get<std::string>()).lexically_normal()] = row["sketch"].get<std::string>();
+      out[fs::absolute(folder / row["output"].get<std::string>()).lexically_normal()] =
+          row["sketch"].get<std::string>();
   return out;
 }
 
@@ -72,7 +74,7 @@ std::vector<ResultMesh> result_meshes(const std::vector<std::string>& inputs) {
         if (!entry.is_regular_file() || entry.path().extension() != ".ply") continue;
         const fs::path relative = entry.path().lexically_relative(input);
         ResultMesh result{entry.path(), fs::path(relative).replace_extension(), std::nullopt};
-        if (const auto it = sketches.find(relative.lexically_normal()); it != sketches.end())
+        if (const auto it = sketches.find(fs::absolute(entry.path()).lexically_normal()); it != sketches.end())
           result.sketch = it->second;
         found.push_back(std::move(result));
       }
