@@ -186,6 +186,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"extract.attract_weight", setter([](Params& p) -> auto& { return p.extract.energy.attract_weight; })},
       {"extract.trust_distance", setter([](Params& p) -> auto& { return p.extract.energy.trust_distance; })},
       {"extract.box_margin", setter([](Params& p) -> auto& { return p.extract.energy.box_margin; })},
+      {"extract.face_tolerance", setter([](Params& p) -> auto& { return p.extract.face_tolerance; })},
       {"extract.max_iterations", setter([](Params& p) -> auto& { return p.extract.energy.max_iterations; })},
       {"extract.lbfgs_rank", setter([](Params& p) -> auto& { return p.extract.energy.lbfgs_rank; })},
       {"extract.projection_steps", setter([](Params& p) -> auto& { return p.extract.energy.projection_steps; })},
@@ -385,6 +386,7 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   // a curved region's model, fitted to a few section and profile strokes, only bulges there: every
   // curved region stays at the proxy (planes, a section's cap, are still projected onto).
   if (report.proxy.loft_sections > 0) extract_options.smooth_fallback.hold_curved = true;
+  extract_options.drawn_faces = report.proxy.drawn_faces;
   ExtractedSurface surface = [&] {
     try {
       return extract(result.proxy, result.segmentation.labels, result.segmentation.models, work,

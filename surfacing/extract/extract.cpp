@@ -18,6 +18,10 @@ bool ExtractOptions::valid(std::string* why) const {
     if (why) *why = "extract.plane_tolerance must be > 0";
     return false;
   }
+  if (!(face_tolerance >= 0.0)) {
+    if (why) *why = "extract.face_tolerance must be >= 0";
+    return false;
+  }
   return true;
 }
 
@@ -199,6 +203,15 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
           {v.idx(), start_positions.row(v.idx()).transpose(), options.smooth_fallback.pull_weight});
     }
   }
+  if (options.face_tolerance > 0.0)
+    for (auto v : seamed.mesh.vertices()) {
+      const Eigen::Vector3d p = start_positions.row(v.idx()).transpose();
+      if (!held[v.idx()] && !attracted[v.idx()] &&
+          std::any_of(options.drawn_faces.begin(), options.drawn_faces.end(), [&](const Plane& face) {
+            return std::abs(face.signed_distance(p)) <= options.face_tolerance * diagonal;
+          }))
+        constraints.on_drawn_face.push_back(v.idx());
+    }
   // Thin parts' far sides, found on the proxy, end just inside their region's surface, apart
   // from the near side (back_sides.h); held vertices stay where they are held.
   constraints.inside = find_back_sides(seamed, models, options.back_sides);

@@ -31,6 +31,11 @@ struct ExtractOptions {
   OutlineOptions outline;      ///< flat regions end at their drawn outline (outline.h)
   double plane_tolerance = 1e-6;  ///< boundary vertices this close to the mirror plane lie on it
                                   ///< (fraction of the diagonal)
+  std::vector<Plane> drawn_faces;  ///< faces the automatic proxy drew in (ProxyReport::drawn_faces;
+                                   ///< set by the Surfacer): proxy vertices on them are
+                                   ///< MeshConstraints::on_drawn_face
+  double face_tolerance = 1e-4;    ///< a proxy vertex this close to a drawn face lies on it
+                                   ///< (fraction of the diagonal; 0 = no vertex does)
   bool valid(std::string* why) const;
 };
 

@@ -172,7 +172,8 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   // Vertices whose surfaces lie only farther from the strokes than where the proxy put them stay
   // there: what they would land on (a far branch of a zero set, a model extrapolated past its
   // strokes) is not what the strokes depict. So do vertices that would leave the strokes' grown
-  // box from inside it (box_margin). Tested after the first projection, and once more
+  // box from inside it (box_margin), and vertices far from the strokes that would leave a face
+  // the proxy drew in by more than trust_distance (on_drawn_face). Tested after the first projection, and once more
   // after the solve (the solve can carry vertices there step by step); a vertex held then makes
   // a second solve from the proxy. A vertex that the solve leaves past its flat region's drawn
   // outline is held on the outline, the rim it spread past (outline.h); tested after the solve
@@ -192,7 +193,9 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   };
   std::vector<char> held(static_cast<std::size_t>(n), 0);
   for (int v : constraints.held) held[static_cast<std::size_t>(v)] = 1;
-  std::size_t outlined = 0;
+  std::vector<char> on_face(static_cast<std::size_t>(n), 0);
+  for (int v : constraints.on_drawn_face) on_face[static_cast<std::size_t>(v)] = 1;
+  std::size_t outlined = 0, on_faces = 0;
   // Where each held vertex is held: the proxy, or its point of an outline.
   std::vector<Eigen::Vector3d> held_at(static_cast<std::size_t>(n));
   for (int v = 0; v < n; ++v)
@@ -210,7 +213,7 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
       Eigen::Vector3d q;
       return !tree || tree->closest_face(point, &q) < 0 ? 0.0 : (q - point).norm();
     };
-    // 1: held at the proxy; 2: held on an outline; at target[i].
+    // 1: held at the proxy; 2: held on an outline; 3: held on a drawn face; at target[i].
     std::vector<char> far(static_cast<std::size_t>(n), 0);
     std::vector<Eigen::Vector3d> target(static_cast<std::size_t>(n));
     parallel_for(0, static_cast<std::size_t>(n), threads, [&](std::size_t i) {
@@ -218,8 +221,15 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
       const double* from = &proxy[3 * i];
       const Eigen::Vector3d to(at[3 * i], at[3 * i + 1], at[3 * i + 2]);
       const double moved = (to - Eigen::Vector3d(from[0], from[1], from[2])).norm();
-      if ((tree && moved > reach && to_strokes(to.data()) > to_strokes(from) + reach) ||
-          (outside_box(to.data()) && !outside_box(from))) {
+      if (tree && moved > reach) {
+        const double before = to_strokes(from);
+        if (to_strokes(to.data()) > before + reach || (on_face[i] && before > reach)) {
+          far[i] = on_face[i] ? 3 : 1;
+          target[i] = Eigen::Vector3d(from[0], from[1], from[2]);
+          return;
+        }
+      }
+      if (outside_box(to.data()) && !outside_box(from)) {
         far[i] = 1;
         target[i] = Eigen::Vector3d(from[0], from[1], from[2]);
         return;
@@ -243,6 +253,7 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
       trusted.attract.push_back({v, target[static_cast<std::size_t>(v)]});
       held_at[static_cast<std::size_t>(v)] = target[static_cast<std::size_t>(v)];
       outlined += far[static_cast<std::size_t>(v)] == 2;
+      on_faces += far[static_cast<std::size_t>(v)] == 3;
       any = true;
     }
     return any;
@@ -278,6 +289,7 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   }
   summary.outline_vertices = outlined;
   summary.held_vertices = trusted.held.size() - constraints.held.size() - outlined;
+  summary.face_vertices = on_faces;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (double value : x)

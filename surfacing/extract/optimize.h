@@ -101,6 +101,13 @@ struct MeshConstraints {
                                                     ///< outline_margin outside one is held at its
                                                     ///< closest point of the outline instead
   double outline_margin = 0.0;         ///< mesh units
+  std::vector<int> on_drawn_face;      ///< vertices on a face the proxy drew in where the strokes
+                                       ///< draw one (ProxyReport::drawn_faces): flat, bounded by
+                                       ///< its strokes. One farther than trust_distance from the
+                                       ///< strokes that those steps would take farther than that
+                                       ///< off the face stays there: a region's model that bulges
+                                       ///< into or out of a face with no stroke on it is
+                                       ///< extrapolated from the strokes round it
 };
 
 /// Moves each vertex onto the intersection of its labels' surfaces by damped Gauss-Newton steps
@@ -133,6 +140,8 @@ struct OptimizeSummary {
   int local_global_iterations = 0;  ///< iterations of the local-global start made
   std::size_t held_vertices = 0;    ///< vertices kept with the proxy (trust_distance)
   std::size_t outline_vertices = 0; ///< vertices held on a flat region's drawn outline
+  std::size_t face_vertices = 0;    ///< vertices held on a face drawn in (on_drawn_face; also
+                                    ///< counted in held_vertices)
   std::string termination;  ///< termination type and message (in Ceres' words: CONVERGENCE, ...)
   std::string solver;       ///< minimizer and linear solver used
   bool usable = false;      ///< the solver reports a usable solution

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 #include <vector>
@@ -1221,16 +1222,37 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // Faces are drawn in on their strokes, else halfway out to the box; whether either cut was kept.
   const bool faces_drawn_in = r.confine_radius > 0.0 && options.confine_box_tight > 0.0 &&
                               options.confine_box_tight < options.confine_box;
-  const auto close_or_halfway = [&](auto&& cut) {
-    return cut(options.confine_box_tight) || cut(0.5 * (options.confine_box_tight + options.confine_box));
+  // The margin of the cut kept, if either was.
+  const auto close_or_halfway = [&](auto&& cut) -> std::optional<double> {
+    for (const double margin : {options.confine_box_tight, 0.5 * (options.confine_box_tight + options.confine_box)})
+      if (cut(margin)) return margin;
+    return std::nullopt;
   };
-  if (faces_drawn_in && face_count > 0 && close_or_halfway(draw_in)) r.box_drawn_in = face_count;
+  // The planes of the faces drawn in (unit frame, outward normals): the surface lies on them
+  // where they cut it.
+  std::vector<Plane> drawn;
+  if (faces_drawn_in && face_count > 0)
+    if (const std::optional<double> margin = close_or_halfway(draw_in)) {
+      r.box_drawn_in = face_count;
+      for (int a = 0; a < 3; ++a)
+        for (int side = 0; side < 2; ++side)
+          if (faces[a][side]) {
+            Plane face;
+            face.normal = (side == 1 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(a);
+            face.offset = side == 1 ? -(strokes_box.max[a] + *margin) : strokes_box.min[a] - *margin;
+            drawn.push_back(face);
+          }
+    }
   // The slanted faces the strokes draw (drawn_planes), cut close to their strokes in the same way
   // where the surface reaches past them.
   const std::vector<Plane> planes = faces_drawn_in ? drawn_planes(unit, options) : std::vector<Plane>{};
-  const auto cut_planes = [&](double face_margin) {
+  const auto moved_out = [&](double face_margin) {
     std::vector<Plane> moved = planes;
     for (Plane& plane : moved) plane.offset -= face_margin;
+    return moved;
+  };
+  const auto cut_planes = [&](double face_margin) {
+    const std::vector<Plane> moved = moved_out(face_margin);
     const auto reaches_past = [&](const TriangleArrays& mesh) {
       for (const Plane& plane : moved)
         if (((mesh.V * plane.normal).array() + plane.offset > 0.0).any()) return true;
@@ -1239,7 +1261,11 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     return kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
            try_cut([&](ConfinedField& g) { g.set_planes(moved); });
   };
-  if (!planes.empty() && close_or_halfway(cut_planes)) r.planes_drawn_in = planes.size();
+  if (!planes.empty())
+    if (const std::optional<double> margin = close_or_halfway(cut_planes)) {
+      r.planes_drawn_in = planes.size();
+      for (const Plane& face : moved_out(*margin)) drawn.push_back(face);
+    }
   r.lambda = kept.lambda;
   r.samples = kept.samples;
   r.windows = kept.windows;
@@ -1315,6 +1341,11 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.remesh_seconds = seconds_since(t0);
   if (options.attract_vipss)
     attract_and_subdivide(mesh, stroke_targets(unit, options.edge), options, progress, frame.scale, r);
+  // n . x_unit + o = scale (n . x + o / scale - n . centre).
+  for (Plane face : drawn) {
+    face.offset = face.offset / frame.scale - face.normal.dot(frame.centre);
+    r.drawn_faces.push_back(face);
+  }
   return finish(std::move(mesh), frame, start, r, report);
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "surfacing/mesh.h"
 #include "surfacing/progress.h"
@@ -239,6 +240,9 @@ struct ProxyReport {
   bool outline_cut = false;       ///< automatic proxy: the surface was cut at the outline
   int box_drawn_in = 0;           ///< automatic proxy: sides of the box drawn in (confine_box_tight)
   std::size_t planes_drawn_in = 0;  ///< automatic proxy: slanted faces drawn in the same way
+  std::vector<Plane> drawn_faces;   ///< automatic proxy (VIPSS's surface): the planes of the faces
+                                    ///< drawn in, box sides and slanted, in the sketch's units,
+                                    ///< normals outward; the proxy lies on them where they cut it
   std::size_t loft_sections = 0;  ///< automatic proxy: the section loops it was lofted through
                                   ///< (0: VIPSS's surface)
   std::size_t windows = 0;        ///< automatic proxy: membrane bumps closing windows

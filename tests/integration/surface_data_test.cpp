@@ -7,12 +7,16 @@
 // a lamp's cable and its plug, a torch's ring on a string, and an espresso machine's two dots are
 // left out of the surface (the machine's cap then does not pass through itself); a
 // shield's back drawn by its rim comes out as a cap, not folded; a dress drawn as sections comes
-// out as a tube lofted through them; a lamp's pole is not spread into a wall.
+// out as a tube lofted through them; a lamp's pole is not spread into a wall; a mouse's flat
+// bottom, drawn by its outline, stays flat.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <limits>
+#include <map>
 #include <tuple>
 
 #include "surfacing/error.h"
@@ -167,6 +171,48 @@ TEST(ThinPartData, ALampsPoleIsNotAWall) {
     EXPECT_EQ(testing::section_loops(r.mesh, height), 1u) << "at " << t;
     EXPECT_LT(testing::section_width(r.mesh, height), 0.07 * box.diagonal()) << "at " << t;
   }
+}
+
+TEST(FaceData, AMousesFlatBottomIsNotDentedByTheShellsModel) {
+  // cassie/computer-mouse: a shell drawn with its bottom outline, no stroke across the bottom. The
+  // proxy draws the bottom in as a flat face; the region that holds the bottom and the skirt fits
+  // the skirt's strokes with a quartic whose zero set dips 3-8% of the diagonal into the body
+  // under the bottom's middle: a grooved bottom and a lip round it where the skirt passed through
+  // the shell (4,818 crossing triangle pairs; the proxy has 9). The bottom stays on its face.
+  const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "cassie" / "computer-mouse.curves");
+  const SurfaceResult r = Surfacer().run(sketch);
+  const double diagonal = sketch.bounding_box().diagonal();
+  const auto bottom = std::find_if(r.report.proxy.drawn_faces.begin(), r.report.proxy.drawn_faces.end(),
+                                   [](const Plane& face) { return face.normal.y() < -0.99; });
+  ASSERT_NE(bottom, r.report.proxy.drawn_faces.end()) << "the proxy draws the bottom in";
+  EXPECT_GT(r.report.extraction.optimization.face_vertices, 0u);
+  // The lowest point of the surface over each cell of the bottom (cells 1% of the diagonal wide,
+  // in x and z), where the proxy lies on the face farther than 5% from every stroke point.
+  const double cell = 0.01 * diagonal;
+  const auto key = [&](const Eigen::Vector3d& p) {
+    return std::pair{static_cast<long>(std::floor(p.x() / cell)), static_cast<long>(std::floor(p.z() / cell))};
+  };
+  std::map<std::pair<long, long>, double> lowest;
+  for (auto v : r.mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(r.mesh.point(v));
+    const auto [it, added] = lowest.emplace(key(p), p.y());
+    if (!added) it->second = std::min(it->second, p.y());
+  }
+  std::size_t inner = 0, dented = 0;
+  for (auto v : r.proxy.vertices()) {
+    const Eigen::Vector3d p = to_eigen(r.proxy.point(v));
+    if (std::abs(bottom->signed_distance(p)) > 1e-4 * diagonal) continue;
+    double to_strokes = std::numeric_limits<double>::infinity();
+    for (const Stroke& s : sketch.strokes)
+      for (const Eigen::Vector3d& q : s.points) to_strokes = std::min(to_strokes, (q - p).norm());
+    if (to_strokes < 0.05 * diagonal) continue;
+    ++inner;
+    const auto it = lowest.find(key(p));
+    dented += it == lowest.end() || it->second > p.y() + 0.02 * diagonal;
+  }
+  ASSERT_GT(inner, 1000u);
+  EXPECT_LT(static_cast<double>(dented) / inner, 0.05) << dented << " of " << inner;
+  EXPECT_LT(r.report.checks.self_intersections, 1000u);
 }
 
 TEST(SectionData, ADressDrawnAsSectionsIsALoftedTube) {

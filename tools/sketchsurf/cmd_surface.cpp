@@ -153,6 +153,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                       {"corner_vertices", ex.corner_vertices},
                       {"held_vertices", ex.optimization.held_vertices},
                       {"outline_vertices", ex.optimization.outline_vertices},
+                      {"face_vertices", ex.optimization.face_vertices},
                       {"regions_at_proxy", ex.smooth_fallback.kept},
                       {"regions_pulled_to_proxy", ex.smooth_fallback.pulled},
                       {"smooth_parts", ex.smooth_fallback.parts},

@@ -271,6 +271,47 @@ TEST(OptimizeMesh, VerticesStayInsideTheStrokesGrownBox) {
   EXPECT_GT(held, 0u);
 }
 
+TEST(OptimizeMesh, AFaceDrawnInStaysFlatWhereAModelWouldDentIt) {
+  // A sphere cut flat at z = 0.6 (a face drawn in: a disc of radius 0.8), drawn along its rim
+  // and its equator. The model, a unit sphere centred at z = 1.2, passes through the rim and dips
+  // to z = 0.2 under the disc's middle: the projection would dent the face by 0.4, a move that
+  // brings the disc's middle no farther from the strokes (0.80 -> 0.89) than the trust distance
+  // (0.1), inside the strokes' box. Marked as on a drawn face, the disc's vertices stay on it.
+  ImplicitModel dent = unit_sphere();
+  dent.center = Eigen::Vector3d(0.0, 0.0, 1.2);
+  TriMesh proxy = testing::icosphere(4, 1.0);
+  for (auto v : proxy.vertices()) proxy.point(v)[2] = std::min(proxy.point(v)[2], 0.6);
+  Sketch sketch;
+  for (const auto& [r, z] : {std::pair{0.8, 0.6}, std::pair{1.0, 0.0}}) {
+    Stroke ring;
+    for (int k = 0; k <= 64; ++k)
+      ring.points.emplace_back(r * std::cos(k * M_PI / 32.0), r * std::sin(k * M_PI / 32.0), z);
+    sketch.strokes.push_back(ring);
+  }
+  const auto middle = [&](bool marked, std::size_t* on_face) {
+    LabeledMesh m{proxy, std::vector<std::vector<int>>(proxy.n_vertices(), {0}),
+                  std::vector<int>(proxy.n_vertices(), -1)};
+    MeshConstraints c;
+    c.strokes = stroke_segments(sketch, false);
+    if (marked)
+      for (auto v : proxy.vertices())
+        if (proxy.point(v)[2] == 0.6) c.on_drawn_face.push_back(v.idx());
+    const OptimizeSummary s = optimize_mesh(m, {dent}, c, {});
+    EXPECT_TRUE(s.usable) << s.termination;
+    *on_face = s.face_vertices;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (auto v : proxy.vertices())
+      if (std::hypot(proxy.point(v)[0], proxy.point(v)[1]) < 0.2 && proxy.point(v)[2] == 0.6)
+        lowest = std::min<double>(lowest, m.mesh.point(v)[2]);
+    return lowest;
+  };
+  std::size_t on_face = 0;
+  EXPECT_LT(middle(false, &on_face), 0.4) << "unmarked, the face is dented";
+  EXPECT_EQ(on_face, 0u);
+  EXPECT_NEAR(middle(true, &on_face), 0.6, 0.01);
+  EXPECT_GT(on_face, 0u);
+}
+
 TEST(OptimizeMesh, SameResultWhateverTheThreadCount) {
   const Eigen::Vector3d half(0.5, 0.5, 0.5);
   const TriMesh proxy = testing::rounded_box_mesh(3, half, 0.1);
