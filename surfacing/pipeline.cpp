@@ -187,6 +187,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"extract.trust_distance", setter([](Params& p) -> auto& { return p.extract.energy.trust_distance; })},
       {"extract.box_margin", setter([](Params& p) -> auto& { return p.extract.energy.box_margin; })},
       {"extract.face_tolerance", setter([](Params& p) -> auto& { return p.extract.face_tolerance; })},
+      {"extract.face_share", setter([](Params& p) -> auto& { return p.extract.face_share; })},
       {"extract.max_iterations", setter([](Params& p) -> auto& { return p.extract.energy.max_iterations; })},
       {"extract.lbfgs_rank", setter([](Params& p) -> auto& { return p.extract.energy.lbfgs_rank; })},
       {"extract.projection_steps", setter([](Params& p) -> auto& { return p.extract.energy.projection_steps; })},

@@ -22,6 +22,10 @@ bool ExtractOptions::valid(std::string* why) const {
     if (why) *why = "extract.face_tolerance must be >= 0";
     return false;
   }
+  if (!(face_share >= 0.0 && face_share <= 1.0)) {
+    if (why) *why = "extract.face_share must be in [0, 1]";
+    return false;
+  }
   return true;
 }
 
@@ -203,15 +207,31 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
           {v.idx(), start_positions.row(v.idx()).transpose(), options.smooth_fallback.pull_weight});
     }
   }
-  if (options.face_tolerance > 0.0)
+  // Vertices on a face drawn in, in regions that lie mostly on such faces (the face's own region:
+  // a region that only touches a face, a thin part's side or a web between parts, is not one).
+  if (options.face_tolerance > 0.0 && !options.drawn_faces.empty()) {
+    std::vector<char> on_face(seamed.labels.size(), 0);
+    std::vector<std::size_t> region_on(models.size(), 0), region_all(models.size(), 0);
     for (auto v : seamed.mesh.vertices()) {
       const Eigen::Vector3d p = start_positions.row(v.idx()).transpose();
-      if (!held[v.idx()] && !attracted[v.idx()] &&
-          std::any_of(options.drawn_faces.begin(), options.drawn_faces.end(), [&](const Plane& face) {
-            return std::abs(face.signed_distance(p)) <= options.face_tolerance * diagonal;
+      on_face[v.idx()] = std::any_of(options.drawn_faces.begin(), options.drawn_faces.end(), [&](const Plane& face) {
+        return std::abs(face.signed_distance(p)) <= options.face_tolerance * diagonal;
+      });
+      for (int r : seamed.labels[v.idx()]) {
+        ++region_all[static_cast<std::size_t>(r)];
+        region_on[static_cast<std::size_t>(r)] += on_face[v.idx()];
+      }
+    }
+    for (auto v : seamed.mesh.vertices()) {
+      const auto& l = seamed.labels[v.idx()];
+      if (on_face[v.idx()] && !held[v.idx()] && !attracted[v.idx()] &&
+          std::all_of(l.begin(), l.end(), [&](int r) {
+            return static_cast<double>(region_on[static_cast<std::size_t>(r)]) >=
+                   options.face_share * static_cast<double>(region_all[static_cast<std::size_t>(r)]);
           }))
         constraints.on_drawn_face.push_back(v.idx());
     }
+  }
   // Thin parts' far sides, found on the proxy, end just inside their region's surface, apart
   // from the near side (back_sides.h); held vertices stay where they are held.
   constraints.inside = find_back_sides(seamed, models, options.back_sides);

@@ -35,7 +35,9 @@ struct ExtractOptions {
                                    ///< set by the Surfacer): proxy vertices on them are
                                    ///< MeshConstraints::on_drawn_face
   double face_tolerance = 1e-4;    ///< a proxy vertex this close to a drawn face lies on it
-                                   ///< (fraction of the diagonal; 0 = no vertex does)
+                                   ///< (fraction of the diagonal; 0 = no vertex does) ...
+  double face_share = 0.5;         ///< ... and counts as on it when at least this share of each of
+                                   ///< its regions' vertices lie on drawn faces
   bool valid(std::string* why) const;
 };
 
