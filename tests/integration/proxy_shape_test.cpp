@@ -345,7 +345,9 @@ TEST(ProxyShape, WineglassFootEndsAtItsRim) {
     Made m;
     m.sketch = synthesize_sketch(glass.mesh, options);
     m.proxy = make_proxy(m.sketch, outline, {}, &m.report);
-    if (style == SynthOptions::Style::Vr) EXPECT_TRUE(m.report.outline_cut);
+    if (style == SynthOptions::Style::Vr) {
+      EXPECT_TRUE(m.report.outline_cut);
+    }
     const double diagonal = m.sketch.bounding_box().diagonal();
     double widest = 0.0;
     for (const auto v : m.proxy.vertices()) {
