@@ -175,10 +175,10 @@ OptimizeSummary optimize_mesh_with(LabeledMesh& lm, const std::vector<ImplicitMo
   // box from inside it (box_margin), and vertices far from the strokes that would leave a face
   // the proxy drew in by more than trust_distance (on_drawn_face). Tested after the first
   // projection, and once more after the solve (the solve can carry vertices there step by step);
-  // a vertex held then makes a second solve from the proxy. A vertex that the solve leaves past its flat region's drawn
-  // outline is held on the outline, the rim it spread past (outline.h); tested after the solve
-  // only: after the first projection, vertices beside a box's edges lie past their face's
-  // outline for a while and the solve brings them back.
+  // a vertex held then makes a second solve from the proxy. A vertex that the solve leaves past
+  // its flat region's drawn outline is held on the outline, the rim it spread past (outline.h);
+  // tested after the solve only: after the first projection, vertices beside a box's edges lie
+  // past their face's outline for a while and the solve brings them back.
   MeshConstraints trusted = constraints;
   std::optional<ClosestFaceTree> tree;
   if (options.trust_distance > 0.0 && constraints.strokes && constraints.strokes->segments.rows() > 0)
