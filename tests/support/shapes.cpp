@@ -67,6 +67,15 @@ Stroke sample_curve(const std::function<Eigen::Vector3d(double)>& c, double t0, 
   return s;
 }
 
+Stroke horizontal_ring(double radius, double z, int points) {
+  Stroke ring;
+  for (int k = 0; k <= points; ++k) {
+    const double angle = 2.0 * k * M_PI / points;
+    ring.points.emplace_back(radius * std::cos(angle), radius * std::sin(angle), z);
+  }
+  return ring;
+}
+
 Stroke polyline_stroke(std::vector<V3> corners, bool closed, double step) {
   if (closed) corners.push_back(corners.front());
   Stroke s;

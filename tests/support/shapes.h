@@ -15,6 +15,10 @@ namespace sketchsurf::testing {
 Stroke sample_curve(const std::function<Eigen::Vector3d(double)>& c, double t0, double t1,
                     double spacing);
 
+/// A closed circle of `radius` round the z axis at height z: points + 1 points, the last on the
+/// first.
+Stroke horizontal_ring(double radius, double z, int points = 64);
+
 /// A polyline through `corners`, points `step` apart or closer, back to the first when `closed`.
 Stroke polyline_stroke(std::vector<Eigen::Vector3d> corners, bool closed, double step = 0.002);
 

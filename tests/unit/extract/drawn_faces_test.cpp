@@ -5,24 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <utility>
 
 #include "surfacing/extract/extract.h"
 #include "tests/support/shapes.h"
+#include "tests/unit/extract/fixtures.h"
 
 namespace sketchsurf {
 namespace {
 
-// A unit sphere centred at (0, 0, centre_z): x^2 + y^2 + (z - centre_z)^2 - 1.
-ImplicitModel sphere(double centre_z) {
-  ImplicitModel m;
-  m.degree = 2;
-  m.coefficients = Eigen::VectorXd::Zero(10);
-  m.coefficients[0] = -1.0;
-  m.coefficients[4] = m.coefficients[7] = m.coefficients[9] = 1.0;
-  m.center = Eigen::Vector3d(0.0, 0.0, centre_z);
-  return m;
-}
+// The face's region's model: the unit sphere centred at z = 1.2.
+ImplicitModel dent() { return testing::sphere_model(Eigen::Vector3d(0.0, 0.0, 1.2)); }
 
 // The unit sphere cut flat at z = 0.6 (the face drawn in: a disc of radius 0.8, plane z = 0.6,
 // normal +z), drawn along its rim, its equator and a small ring (radius 0.3) 0.35 below the face.
@@ -35,12 +27,8 @@ struct Cut {
   ExtractOptions options;
   Cut() {
     for (auto v : proxy.vertices()) proxy.point(v)[2] = std::min(proxy.point(v)[2], 0.6);
-    for (const auto& [r, z] : {std::pair{0.8, 0.6}, std::pair{1.0, 0.0}, std::pair{0.3, 0.246}}) {
-      Stroke ring;
-      for (int k = 0; k <= 64; ++k)
-        ring.points.emplace_back(r * std::cos(k * M_PI / 32.0), r * std::sin(k * M_PI / 32.0), z);
-      sketch.strokes.push_back(ring);
-    }
+    sketch.strokes = {testing::horizontal_ring(0.8, 0.6), testing::horizontal_ring(1.0, 0.0),
+                      testing::horizontal_ring(0.3, 0.246)};
     Plane top;
     top.normal = Eigen::Vector3d::UnitZ();
     top.offset = -0.6;
@@ -67,7 +55,7 @@ TEST(DrawnFaces, TheFacesOwnRegionStaysOnTheFaceWhereItsModelWouldDentIt) {
   std::vector<int> labels(cut.proxy.n_vertices(), 1);
   for (auto v : cut.proxy.vertices())
     if (cut.proxy.point(v)[2] > 0.5) labels[v.idx()] = 0;
-  const std::vector<ImplicitModel> models{sphere(1.2), sphere(0.0)};
+  const std::vector<ImplicitModel> models{dent(), testing::sphere_model()};
   const ExtractedSurface held = extract(cut.proxy, labels, models, cut.sketch, cut.options);
   EXPECT_GT(held.summary.optimization.face_vertices, 0u);
   EXPECT_NEAR(cut.middle(held), 0.6, 0.01);
@@ -83,7 +71,7 @@ TEST(DrawnFaces, ARegionThatOnlyTouchesTheFaceIsProjected) {
   // between parts that lies on the box's side is not the face's region).
   Cut cut;
   const std::vector<int> labels(cut.proxy.n_vertices(), 0);
-  const ExtractedSurface out = extract(cut.proxy, labels, {sphere(1.2)}, cut.sketch, cut.options);
+  const ExtractedSurface out = extract(cut.proxy, labels, {dent()}, cut.sketch, cut.options);
   EXPECT_EQ(out.summary.optimization.face_vertices, 0u);
   EXPECT_LT(cut.middle(out), 0.4);
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Known-answer inputs for the extract tests: a rounded-cube proxy labelled by the dominant axis of
 // each vertex, with the six exact face planes of the cube as models (what a perfect segmentation
-// of the cube sketch gives).
+// of the cube sketch gives), and unit spheres as models.
 
 #include <Eigen/Core>
 #include <vector>
@@ -16,6 +16,17 @@ inline ImplicitModel plane_model(const Eigen::Vector3d& n, double offset) {
   ImplicitModel m;
   m.degree = 1;
   m.coefficients = Eigen::Vector4d(-offset, n.x(), n.y(), n.z());
+  return m;
+}
+
+/// The unit sphere round `center`: |x - center|^2 - 1.
+inline ImplicitModel sphere_model(const Eigen::Vector3d& center = Eigen::Vector3d::Zero()) {
+  ImplicitModel m;
+  m.degree = 2;
+  m.coefficients = Eigen::VectorXd::Zero(10);
+  m.coefficients[0] = -1.0;
+  m.coefficients[4] = m.coefficients[7] = m.coefficients[9] = 1.0;
+  m.center = center;
   return m;
 }
 

@@ -42,15 +42,6 @@ ImplicitModel cubic_model() {
 }
 
 /// The unit sphere x^2 + y^2 + z^2 - 1 as a quadric.
-ImplicitModel unit_sphere() {
-  ImplicitModel sphere;
-  sphere.degree = 2;
-  sphere.coefficients = Eigen::VectorXd::Zero(10);
-  sphere.coefficients[0] = -1.0;
-  sphere.coefficients[4] = sphere.coefficients[7] = sphere.coefficients[9] = 1.0;
-  return sphere;
-}
-
 TEST(MeshEnergyTerms, JacobiansMatchNumericDerivatives) {
   const ImplicitModel model = cubic_model();
   std::unique_ptr<ceres::CostFunction> project(detail::make_projection_cost(model, 0.5, 1e-6));
@@ -154,7 +145,7 @@ TEST(RegularizationWeights, DependOnTheAngleBetweenRegions) {
 }
 
 TEST(OptimizeMesh, ProjectsANoisySphereOntoItsModel) {
-  const ImplicitModel sphere = unit_sphere();
+  const ImplicitModel sphere = testing::sphere_model();
   TriMesh mesh = testing::icosphere(4, 1.0);
   // Push every vertex off the sphere by up to 5%.
   int i = 0;
@@ -202,7 +193,7 @@ TEST(OptimizeMesh, KeepsPlaneVerticesOnThePlaneAndAttractsTargets) {
 TEST(OptimizeMesh, HeldVerticesStayAtTheirTargetsAndTheRestIsProjected) {
   // A sphere of radius 1.05 over the model of radius 1: the half x > 0 is held at the start
   // (what a region kept at the proxy gets), the rest is projected.
-  const ImplicitModel sphere = unit_sphere();
+  const ImplicitModel sphere = testing::sphere_model();
   LabeledMesh m{testing::icosphere(4, 1.05), {}, {}};
   m.labels.assign(m.mesh.n_vertices(), {0});
   m.source_vertex.assign(m.mesh.n_vertices(), -1);
@@ -230,17 +221,12 @@ TEST(OptimizeMesh, VerticesStayInsideTheStrokesGrownBox) {
   // z = +-0.85, over the unit sphere as model: projection would carry the poles to z = +-1,
   // past the strokes' box (z within 0.85) grown by box_margin. The rings are 0.33 from the
   // poles either way, so the distance to the strokes alone (trust_distance) does not hold them.
-  const ImplicitModel sphere = unit_sphere();
+  const ImplicitModel sphere = testing::sphere_model();
   TriMesh proxy = testing::icosphere(4, 1.0);
   for (auto v : proxy.vertices()) proxy.point(v)[2] *= 0.9;
   Sketch sketch;
-  for (double z : {-0.85, 0.0, 0.85}) {
-    Stroke ring;
-    const double r = std::sqrt(1.0 - (z / 0.9) * (z / 0.9));
-    for (int k = 0; k <= 64; ++k)
-      ring.points.emplace_back(r * std::cos(k * M_PI / 32.0), r * std::sin(k * M_PI / 32.0), z);
-    sketch.strokes.push_back(ring);
-  }
+  for (double z : {-0.85, 0.0, 0.85})
+    sketch.strokes.push_back(testing::horizontal_ring(std::sqrt(1.0 - (z / 0.9) * (z / 0.9)), z));
   MeshConstraints c;
   c.strokes = stroke_segments(sketch, false);
   auto top = [&](double margin, std::size_t* held, double trust = MeshEnergyOptions{}.trust_distance) {
@@ -277,17 +263,11 @@ TEST(OptimizeMesh, AFaceDrawnInStaysFlatWhereAModelWouldDentIt) {
   // to z = 0.2 under the disc's middle: the projection would dent the face by 0.4, a move that
   // brings the disc's middle no farther from the strokes (0.80 -> 0.89) than the trust distance
   // (0.1), inside the strokes' box. Marked as on a drawn face, the disc's vertices stay on it.
-  ImplicitModel dent = unit_sphere();
-  dent.center = Eigen::Vector3d(0.0, 0.0, 1.2);
+  const ImplicitModel dent = testing::sphere_model(Eigen::Vector3d(0.0, 0.0, 1.2));
   TriMesh proxy = testing::icosphere(4, 1.0);
   for (auto v : proxy.vertices()) proxy.point(v)[2] = std::min(proxy.point(v)[2], 0.6);
   Sketch sketch;
-  for (const auto& [r, z] : {std::pair{0.8, 0.6}, std::pair{1.0, 0.0}}) {
-    Stroke ring;
-    for (int k = 0; k <= 64; ++k)
-      ring.points.emplace_back(r * std::cos(k * M_PI / 32.0), r * std::sin(k * M_PI / 32.0), z);
-    sketch.strokes.push_back(ring);
-  }
+  sketch.strokes = {testing::horizontal_ring(0.8, 0.6), testing::horizontal_ring(1.0, 0.0)};
   const auto middle = [&](bool marked, std::size_t* on_face) {
     LabeledMesh m{proxy, std::vector<std::vector<int>>(proxy.n_vertices(), {0}),
                   std::vector<int>(proxy.n_vertices(), -1)};
