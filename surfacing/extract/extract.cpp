@@ -12,7 +12,7 @@ namespace sketchsurf {
 
 bool ExtractOptions::valid(std::string* why) const {
   if (!seams.valid(why) || !energy.valid(why) || !trim.valid(why) || !smooth_fallback.valid(why) ||
-      !back_sides.valid(why) || !outline.valid(why))
+      !back_sides.valid(why) || !outline.valid(why) || !unfold.valid(why))
     return false;
   if (!(plane_tolerance > 0.0)) {
     if (why) *why = "extract.plane_tolerance must be > 0";
@@ -239,6 +239,7 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   constraints.inside_gap = options.back_sides.gap * diagonal;
   summary.back_side_vertices = constraints.inside.size();
   summary.optimization = optimize_mesh(seamed, models, constraints, options.energy, progress);
+  summary.unfold = unfold(seamed.mesh, start_positions, on_plane, options.unfold);
   summary.optimize_s = seconds_since(t);
 
   // Region and crease flags, from the final positions.

@@ -11,6 +11,7 @@
 #include "surfacing/portable_math.h"
 #include "surfacing/proxy/proxy.h"
 #include "surfacing/quality/sampling.h"
+#include "surfacing/self_intersections.h"
 #include "surfacing/sketch/stroke_segments.h"
 
 namespace sketchsurf {
@@ -18,32 +19,6 @@ namespace sketchsurf {
 namespace {
 
 using V3 = Eigen::Vector3d;
-
-// Whether segment pq crosses triangle abc (Moller-Trumbore; a segment in the triangle's plane
-// does not count).
-bool segment_hits_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
-  const V3 d = q - p, e1 = b - a, e2 = c - a;
-  const V3 h = d.cross(e2);
-  const double det = e1.dot(h);
-  const double scale = e1.norm() * e2.norm() * d.norm();
-  if (!(std::abs(det) > 1e-12 * scale)) return false;
-  const V3 s = p - a;
-  const double u = s.dot(h) / det;
-  if (u < 0.0 || u > 1.0) return false;
-  const V3 r = s.cross(e1);
-  const double v = d.dot(r) / det;
-  if (v < 0.0 || u + v > 1.0) return false;
-  const double t = e2.dot(r) / det;
-  return t >= 0.0 && t <= 1.0;
-}
-
-bool triangles_cross(const std::array<V3, 3>& A, const std::array<V3, 3>& B) {
-  for (int i = 0; i < 3; ++i) {
-    if (segment_hits_triangle(A[i], A[(i + 1) % 3], B[0], B[1], B[2])) return true;
-    if (segment_hits_triangle(B[i], B[(i + 1) % 3], A[0], A[1], A[2])) return true;
-  }
-  return false;
-}
 
 // The curves between regions, traced through the midpoints of the edges whose two vertices have
 // different labels (two such edges of a face are joined): their length, and their length after
@@ -115,51 +90,6 @@ std::string percent(double fraction) {
 }
 
 }  // namespace
-
-std::size_t count_self_intersections(const TriMesh& mesh) {
-  const Eigen::MatrixX3d V = vertex_matrix(mesh);
-  const Eigen::MatrixX3i F = face_matrix(mesh);
-  if (F.rows() < 2) return 0;
-  double edge_sum = 0.0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) edge_sum += (V.row(F(f, k)) - V.row(F(f, (k + 1) % 3))).norm();
-  const double cell = std::max(2.0 * edge_sum / (3.0 * static_cast<double>(F.rows())), 1e-300);
-  const V3 origin = V.colwise().minCoeff();
-  const auto cell_of = [&](const V3& p) {
-    return ((p - origin) / cell).array().floor().cast<long long>().matrix().eval();
-  };
-  const auto key = [](const Eigen::Matrix<long long, 3, 1>& c) {
-    return static_cast<std::uint64_t>(c.x()) * 73856093ull ^ static_cast<std::uint64_t>(c.y()) * 19349663ull ^
-           static_cast<std::uint64_t>(c.z()) * 83492791ull;
-  };
-  std::vector<V3> lo(static_cast<std::size_t>(F.rows())), hi(lo.size());
-  std::unordered_map<std::uint64_t, std::vector<int>> grid;
-  for (int f = 0; f < F.rows(); ++f) {
-    lo[f] = V.row(F(f, 0)).cwiseMin(V.row(F(f, 1))).cwiseMin(V.row(F(f, 2)));
-    hi[f] = V.row(F(f, 0)).cwiseMax(V.row(F(f, 1))).cwiseMax(V.row(F(f, 2)));
-    const auto c0 = cell_of(lo[f]), c1 = cell_of(hi[f]);
-    for (long long x = c0.x(); x <= c1.x(); ++x)
-      for (long long y = c0.y(); y <= c1.y(); ++y)
-        for (long long z = c0.z(); z <= c1.z(); ++z) grid[key({x, y, z})].push_back(f);
-  }
-  std::size_t count = 0;
-  for (const auto& [cell_key, faces] : grid)
-    for (std::size_t i = 0; i < faces.size(); ++i)
-      for (std::size_t j = i + 1; j < faces.size(); ++j) {
-        const int a = faces[i], b = faces[j];
-        if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
-        // Count the pair in one cell only: the one holding the low corner of the boxes' overlap.
-        if (key(cell_of(lo[a].cwiseMax(lo[b]))) != cell_key) continue;
-        bool shared = false;
-        for (int k = 0; k < 3; ++k)
-          for (int l = 0; l < 3; ++l) shared |= F(a, k) == F(b, l);
-        if (shared) continue;
-        const std::array<V3, 3> A = {V.row(F(a, 0)), V.row(F(a, 1)), V.row(F(a, 2))};
-        const std::array<V3, 3> B = {V.row(F(b, 0)), V.row(F(b, 1)), V.row(F(b, 2))};
-        count += triangles_cross(A, B);
-      }
-  return count;
-}
 
 ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, const Sketch& sketch,
                         bool open_expected, const CheckOptions& options) {

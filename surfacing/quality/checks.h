@@ -80,8 +80,4 @@ ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, con
 /// stroke distance p95 in percent of the diagonal.
 double non_surface_score(const ShapeChecks& checks, double stroke_p95);
 
-/// Pairs of triangles of `mesh` that share no vertex and intersect (a uniform grid over the
-/// triangles' boxes, then exact segment-triangle tests).
-std::size_t count_self_intersections(const TriMesh& mesh);
-
 }  // namespace sketchsurf

@@ -7,6 +7,7 @@
 
 #include "surfacing/extract/extract.h"
 #include "surfacing/quality/checks.h"
+#include "surfacing/self_intersections.h"
 #include "tests/support/shapes.h"
 
 namespace sketchsurf {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "surfacing/quality/checks.h"
+#include "surfacing/self_intersections.h"
 #include "tests/support/shapes.h"
 
 namespace sketchsurf {

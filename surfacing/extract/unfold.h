@@ -1,0 +1,48 @@
+#pragma once
+// Folds ironed out of the final mesh. Where the projection moves neighbouring vertices onto
+// surfaces that disagree (two regions' models meeting at a seam they do not share, a plane's model
+// running past the side it meets, a thin part squeezed from both sides), the mesh can fold: the
+// surface passes through itself in a frayed fin, a lip or a pleat that its proxy did not have.
+// Round the triangles that cross where they did not cross in the proxy, the surface is replaced by
+// a membrane spanning the surface around them (each vertex at the mean of its neighbours, the
+// ring round the zone fixed), in a zone grown ring by ring until nothing there crosses any more.
+// A fold is a few triangles wide and the membrane over it is as small; a zone that grows past
+// max_share of the mesh is a shape the membrane would flatten (a cap, a whole part), and is left
+// as the solve made it. The rest of the surface is not touched.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "surfacing/mesh.h"
+
+namespace sketchsurf {
+
+/// Options for unfold().
+struct UnfoldOptions {
+  int rings = 2;            ///< rings of vertices round the crossing triangles that are smoothed
+                            ///< too; 0 = off (nothing is smoothed)
+  int rounds = 6;           ///< at most this many passes, each one ring wider than the last
+  double max_share = 0.05;  ///< a connected zone with more than this share of the mesh's
+                            ///< vertices is left alone
+  bool valid(std::string* why = nullptr) const;
+};
+
+/// What unfold() did.
+struct UnfoldSummary {
+  std::size_t crossing_pairs = 0;  ///< crossing triangle pairs the proxy did not have, before
+  std::size_t left_pairs = 0;      ///< ... and after
+  std::size_t moved_vertices = 0;  ///< vertices on a membrane
+  std::size_t skipped_vertices = 0;  ///< vertices of zones left alone (larger than max_share)
+  int rounds = 0;                  ///< passes made
+};
+
+/// Irons out the folds of `mesh` (see the file comment): the triangles that cross at the mesh's
+/// positions but not at `start` (its positions before the solve, one row per vertex). Vertices
+/// flagged in `fixed` (empty: none) and those on the mesh's border keep their positions.
+UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& fixed,
+                     const UnfoldOptions& options = {});
+
+}  // namespace sketchsurf
