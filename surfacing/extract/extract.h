@@ -30,7 +30,7 @@ struct ExtractOptions {
   SmoothFallbackOptions smooth_fallback;  ///< the proxy where the models cannot follow the strokes
   BackSideOptions back_sides;  ///< thin parts' two sides kept apart (back_sides.h)
   OutlineOptions outline;      ///< flat regions end at their drawn outline (outline.h)
-  UnfoldOptions unfold;        ///< folds smoothed out after the solve (unfold.h)
+  UnfoldOptions unfold;        ///< folds ironed out after the solve (unfold.h)
   double plane_tolerance = 1e-6;  ///< boundary vertices this close to the mirror plane lie on it
                                   ///< (fraction of the diagonal)
   std::vector<Plane> drawn_faces;  ///< faces the automatic proxy drew in (ProxyReport::drawn_faces;
@@ -62,7 +62,7 @@ StrokeDistance stroke_distance(const TriMesh& mesh, const Sketch& sketch, double
 struct ExtractSummary {
   OptimizeSummary optimization;         ///< the solve of E_mesh
   SmoothFallbackSummary smooth_fallback;  ///< regions and parts kept at the proxy
-  UnfoldSummary unfold;                 ///< folds smoothed out after the solve
+  UnfoldSummary unfold;                 ///< folds ironed out after the solve
   std::size_t proxy_vertices = 0;
   std::size_t trimmed_faces = 0;        ///< proxy faces removed by the open-surface cut
   std::size_t seam_vertices = 0;        ///< inserted vertices with 2 labels
