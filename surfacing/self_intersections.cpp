@@ -41,8 +41,10 @@ bool triangles_cross(const std::array<V3, 3>& A, const std::array<V3, 3>& B) {
 }  // namespace
 
 std::vector<std::array<int, 2>> crossing_face_pairs(const TriMesh& mesh) {
-  const Eigen::MatrixX3d V = vertex_matrix(mesh);
-  const Eigen::MatrixX3i F = face_matrix(mesh);
+  return crossing_face_pairs(vertex_matrix(mesh), face_matrix(mesh));
+}
+
+std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
   std::vector<std::array<int, 2>> pairs;
   if (F.rows() < 2) return pairs;
   double edge_sum = 0.0;

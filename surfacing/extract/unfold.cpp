@@ -50,7 +50,7 @@ std::vector<char> around(const TriMesh& mesh, const std::vector<std::array<int, 
 
 // Drops from `zone` its connected parts of more than `most` vertices, and those that touch a part
 // dropped before, flags them in `skipped` and puts their vertices back where `solved` has them.
-void drop_large_parts(TriMesh& mesh, const TriMesh& solved, std::size_t most, std::vector<char>& zone,
+void drop_large_parts(TriMesh& mesh, const Eigen::MatrixX3d& solved, std::size_t most, std::vector<char>& zone,
                       std::vector<char>& skipped) {
   std::vector<char> seen(zone.size(), 0);
   std::vector<int> part, stack;
@@ -76,7 +76,7 @@ void drop_large_parts(TriMesh& mesh, const TriMesh& solved, std::size_t most, st
     for (int v : part) {
       zone[v] = 0;
       skipped[v] = 1;
-      mesh.set_point(mesh.vertex_handle(v), solved.point(solved.vertex_handle(v)));
+      mesh.set_point(mesh.vertex_handle(v), TriMesh::Point(solved(v, 0), solved(v, 1), solved(v, 2)));
     }
   }
 }
@@ -125,13 +125,8 @@ UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::ve
                      const UnfoldOptions& options) {
   UnfoldSummary summary;
   if (options.rings == 0) return summary;
-  const TriMesh solved = mesh;
-  TriMesh proxy = mesh;
-  for (auto v : proxy.vertices()) {
-    const Eigen::RowVector3d p = start.row(v.idx());
-    proxy.set_point(v, TriMesh::Point(p[0], p[1], p[2]));
-  }
-  const std::vector<std::array<int, 2>> before = crossing_face_pairs(proxy);
+  const Eigen::MatrixX3d solved = vertex_matrix(mesh);
+  const std::vector<std::array<int, 2>> before = crossing_face_pairs(start, face_matrix(mesh));
   std::vector<std::array<int, 2>> crossing = new_crossings(mesh, before);
   summary.crossing_pairs = crossing.size();
   const auto most = static_cast<std::size_t>(options.max_share * static_cast<double>(mesh.n_vertices()));
