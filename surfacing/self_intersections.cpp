@@ -45,8 +45,14 @@ std::vector<std::array<int, 2>> crossing_face_pairs(const TriMesh& mesh) {
 }
 
 std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  return crossing_face_pairs(V, F, {});
+}
+
+std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
+                                                    const std::vector<char>& among) {
   std::vector<std::array<int, 2>> pairs;
   if (F.rows() < 2) return pairs;
+  const auto flagged = [&](int f) { return among.empty() || among[static_cast<std::size_t>(f)] != 0; };
   double edge_sum = 0.0;
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) edge_sum += (V.row(F(f, k)) - V.row(F(f, (k + 1) % 3))).norm();
@@ -60,34 +66,47 @@ std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, c
            static_cast<std::uint64_t>(c.z()) * 83492791ull;
   };
   std::vector<V3> lo(static_cast<std::size_t>(F.rows())), hi(lo.size());
-  std::unordered_map<std::uint64_t, std::vector<int>> grid;
   for (int f = 0; f < F.rows(); ++f) {
     lo[f] = V.row(F(f, 0)).cwiseMin(V.row(F(f, 1))).cwiseMin(V.row(F(f, 2)));
     hi[f] = V.row(F(f, 0)).cwiseMax(V.row(F(f, 1))).cwiseMax(V.row(F(f, 2)));
+  }
+  // The flagged triangles in the cells their boxes overlap; every triangle then meets those in
+  // the cells its own box overlaps.
+  std::unordered_map<std::uint64_t, std::vector<int>> grid;
+  for (int f = 0; f < F.rows(); ++f) {
+    if (!flagged(f)) continue;
     const auto c0 = cell_of(lo[f]), c1 = cell_of(hi[f]);
     for (long long x = c0.x(); x <= c1.x(); ++x)
       for (long long y = c0.y(); y <= c1.y(); ++y)
         for (long long z = c0.z(); z <= c1.z(); ++z) grid[key({x, y, z})].push_back(f);
   }
-  for (const auto& [cell_key, faces] : grid)
-    for (std::size_t i = 0; i < faces.size(); ++i)
-      for (std::size_t j = i + 1; j < faces.size(); ++j) {
-        const int a = faces[i], b = faces[j];
-        if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
-        // Count the pair in one cell only: the one holding the low corner of the boxes' overlap.
-        if (key(cell_of(lo[a].cwiseMax(lo[b]))) != cell_key) continue;
-        bool shared = false;
-        for (int k = 0; k < 3; ++k)
-          for (int l = 0; l < 3; ++l) shared |= F(a, k) == F(b, l);
-        if (shared) continue;
-        const std::array<V3, 3> A = {V.row(F(a, 0)), V.row(F(a, 1)), V.row(F(a, 2))};
-        const std::array<V3, 3> B = {V.row(F(b, 0)), V.row(F(b, 1)), V.row(F(b, 2))};
-        if (triangles_cross(A, B)) pairs.push_back({std::min(a, b), std::max(a, b)});
-      }
+  for (int a = 0; a < F.rows(); ++a) {
+    const auto c0 = cell_of(lo[a]), c1 = cell_of(hi[a]);
+    for (long long x = c0.x(); x <= c1.x(); ++x)
+      for (long long y = c0.y(); y <= c1.y(); ++y)
+        for (long long z = c0.z(); z <= c1.z(); ++z) {
+          const std::uint64_t cell_key = key({x, y, z});
+          const auto faces = grid.find(cell_key);
+          if (faces == grid.end()) continue;
+          for (const int b : faces->second) {
+            if (b == a || (flagged(a) && b < a)) continue;  // a flagged pair is met from its lower triangle
+            if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
+            // Count the pair in one cell only: the one holding the low corner of the boxes' overlap.
+            if (key(cell_of(lo[a].cwiseMax(lo[b]))) != cell_key) continue;
+            bool shared = false;
+            for (int k = 0; k < 3; ++k)
+              for (int l = 0; l < 3; ++l) shared |= F(a, k) == F(b, l);
+            if (shared) continue;
+            const std::array<V3, 3> A = {V.row(F(a, 0)), V.row(F(a, 1)), V.row(F(a, 2))};
+            const std::array<V3, 3> B = {V.row(F(b, 0)), V.row(F(b, 1)), V.row(F(b, 2))};
+            if (triangles_cross(A, B)) pairs.push_back({std::min(a, b), std::max(a, b)});
+          }
+        }
+  }
   std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());  // cells whose keys collide
   return pairs;
 }
-
 
 std::size_t count_self_intersections(const TriMesh& mesh) { return crossing_face_pairs(mesh).size(); }
 

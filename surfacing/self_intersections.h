@@ -19,6 +19,11 @@ std::vector<std::array<int, 2>> crossing_face_pairs(const TriMesh& mesh);
 /// The same for the triangles F (one row of vertex indices each) over the positions V.
 std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
 
+/// The same, only the pairs with at least one triangle flagged in `among` (one flag per row of
+/// F; empty: all): after a few vertices move, the pairs that can have changed.
+std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
+                                                    const std::vector<char>& among);
+
 /// How many such pairs there are.
 std::size_t count_self_intersections(const TriMesh& mesh);
 

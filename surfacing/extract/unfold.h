@@ -3,11 +3,14 @@
 // surfaces that disagree (two regions' models meeting at a seam they do not share, a plane's model
 // running past the side it meets, a thin part squeezed from both sides), the mesh can fold: the
 // surface passes through itself in a frayed fin, a lip or a pleat that its proxy did not have.
-// Round the triangles that cross where they did not cross in the proxy, the surface is replaced by
-// a membrane spanning the surface around them (each vertex at the mean of its neighbours, the
-// ring round the zone fixed), in a zone grown ring by ring until nothing there crosses any more.
-// A fold is a few triangles wide and the membrane over it is as small; a zone that grows past
-// max_share of the mesh is a shape the membrane would flatten (a cap, a whole part), and is left
+// Round the triangles that cross where they did not cross in the proxy, the surface is filled
+// afresh from the ring round them, in a zone grown ring by ring until nothing there crosses any
+// more: first by a bi-Laplacian fill, which carries the bend of the surface around the zone across
+// it (a pleat on a curved part or at an edge gives way to the curve or the edge), then, where folds
+// are left (the fill can overshoot where the surface round a fold turns sharply), by a membrane
+// spanning the zone (each vertex at the mean of its neighbours), which cannot overshoot.
+// A fold is a few triangles wide and the fill over it is as small; a zone that grows past
+// max_share of the mesh is a shape a fill would flatten (a cap, a whole part), and is left
 // as the solve made it. The rest of the surface is not touched.
 
 #include <Eigen/Core>
@@ -24,7 +27,8 @@ namespace sketchsurf {
 struct UnfoldOptions {
   int rings = 2;            ///< rings of vertices round the crossing triangles that are smoothed
                             ///< too; 0 = off (nothing is smoothed)
-  int rounds = 6;           ///< at most this many passes, each one ring wider than the last
+  int rounds = 6;           ///< at most this many passes of each fill, each one ring wider than
+                            ///< the last
   double max_share = 0.05;  ///< a connected zone with more than this share of the mesh's
                             ///< vertices is left alone
   bool valid(std::string* why = nullptr) const;
@@ -34,9 +38,10 @@ struct UnfoldOptions {
 struct UnfoldSummary {
   std::size_t crossing_pairs = 0;  ///< crossing triangle pairs the proxy did not have, before
   std::size_t left_pairs = 0;      ///< ... and after
-  std::size_t moved_vertices = 0;  ///< vertices on a membrane
-  std::size_t skipped_vertices = 0;  ///< vertices of zones left alone (larger than max_share)
-  int rounds = 0;                  ///< passes made
+  std::size_t moved_vertices = 0;  ///< vertices that moved
+  std::size_t skipped_vertices = 0;  ///< vertices of zones the membrane left alone (larger than
+                                     ///< max_share)
+  int rounds = 0;                  ///< passes made, of both fills
 };
 
 /// Irons out the folds of `mesh` (see the file comment): the triangles that cross at the mesh's

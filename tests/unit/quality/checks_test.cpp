@@ -136,5 +136,23 @@ TEST(ShapeChecks, SelfIntersectionsOfTwoOverlappingSpheres) {
   EXPECT_EQ(count_self_intersections(joined(one, testing::icosphere(2, 0.5, Eigen::Vector3d(1.2, 0, 0)))), 0u);
 }
 
+TEST(ShapeChecks, CrossingPairsAmongFlaggedTrianglesAreTheWholeSearchsPairsWithOneOfThem) {
+  const TriMesh mesh = joined(testing::icosphere(3, 0.5), testing::icosphere(3, 0.5, Eigen::Vector3d(0.5, 0.1, 0)));
+  const Eigen::MatrixX3d V = vertex_matrix(mesh);
+  const Eigen::MatrixX3i F = face_matrix(mesh);
+  const std::vector<std::array<int, 2>> all = crossing_face_pairs(V, F);
+  ASSERT_GT(all.size(), 50u);
+  std::vector<char> among(static_cast<std::size_t>(F.rows()), 0);
+  for (std::size_t f = 0; f < among.size(); f += 3) among[f] = 1;
+  std::vector<std::array<int, 2>> expected;
+  for (const auto& pair : all)
+    if (among[pair[0]] || among[pair[1]]) expected.push_back(pair);
+  ASSERT_FALSE(expected.empty());
+  ASSERT_LT(expected.size(), all.size());
+  EXPECT_EQ(crossing_face_pairs(V, F, among), expected);
+  EXPECT_TRUE(crossing_face_pairs(V, F, std::vector<char>(among.size(), 0)).empty());
+  EXPECT_EQ(crossing_face_pairs(V, F, std::vector<char>(among.size(), 1)), all);
+}
+
 }  // namespace
 }  // namespace sketchsurf
