@@ -91,6 +91,21 @@ TEST(BatchCli, TubesReachEverySketch) {
   EXPECT_EQ(read_json(dir / "out" / "antenna.json")["tubes"], 1);
 }
 
+TEST(BatchCli, ParametersReachEveryRunAndAWrongNameStopsBeforeAny) {
+  const fs::path dir = testing::scratch_dir("sketchsurf_batch_");
+  write_quick(testing::cube_sketch(), dir / "in" / "cube.json");
+  const testing::CliRun r = testing::run_cli(
+      "batch " + quoted(dir / "in") + " -o " + quoted(dir / "out") + " --param segment.restarts=1", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_json(dir / "out" / "cube.json")["restarts"], 1);  // the file says 2
+
+  const testing::CliRun wrong = testing::run_cli(
+      "batch " + quoted(dir / "in") + " -o " + quoted(dir / "wrong") + " --param segment.restart=1", dir);
+  EXPECT_EQ(wrong.exit_code, 2) << wrong.err;
+  EXPECT_NE(wrong.err.find("segment.restart"), std::string::npos) << wrong.err;
+  EXPECT_FALSE(fs::exists(dir / "wrong"));
+}
+
 TEST(BatchCli, RefusesTwoSketchesThatWouldWriteTheSameOutput) {
   const fs::path dir = testing::scratch_dir("sketchsurf_batch_");
   write_quick(testing::cube_sketch(), dir / "a" / "shape.json");

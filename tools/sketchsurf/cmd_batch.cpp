@@ -1,7 +1,8 @@
 // sketchsurf batch SKETCH...|DIR... -o OUT_DIR [--jobs N] [--format ply|obj|glb|gltf] [--seed N]
-// [--threads N] [--keep-all-strokes | --tubes] [--closed] [--force]: `surface` on every sketch,
-// each in a process of its own, so that a failure, a crash or an out-of-memory kill in one never
-// stops the others; a summary table at the end, exit 0 only when every sketch was surfaced.
+// [--threads N] [--keep-all-strokes | --tubes] [--closed] [--force] [--param NAME=VALUE]...:
+// `surface` on every sketch, each in a process of its own, so that a failure, a crash or an
+// out-of-memory kill in one never stops the others; a summary table at the end, exit 0 only when
+// every sketch was surfaced.
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -26,6 +27,7 @@
 
 #include "surfacing/error.h"
 #include "surfacing/parallel.h"
+#include "surfacing/pipeline.h"
 #include "surfacing/sketch/io/atomic_file.h"
 #include "tools/sketchsurf/commands.h"
 #include "tools/sketchsurf/run_files.h"
@@ -49,6 +51,7 @@ struct BatchOptions {
   bool tubes = false;
   bool closed = false;
   bool force = false;
+  std::vector<std::string> params;
 };
 
 /// One sketch to surface: where it is, and its outputs' path under OUT_DIR without extension
@@ -240,6 +243,12 @@ nlohmann::json summary_json(const std::vector<Job>& jobs, const std::vector<Outc
 
 void run_batch(const BatchOptions& opt, const GlobalOptions& global) {
   const fs::path out_dir(opt.output);
+  const std::map<std::string, double> given = parse_params(opt.params);
+  try {  // a wrong name is told once, before any run starts
+    Params().apply(given);
+  } catch (const Error& e) {
+    throw Error::usage(std::string("--param: ") + e.what());
+  }
   std::error_code ec;
   if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec))
     throw Error::usage("-o " + opt.output + ": not a folder; batch writes one output per sketch into a folder");
@@ -276,6 +285,7 @@ void run_batch(const BatchOptions& opt, const GlobalOptions& global) {
       if (opt.tubes) args.push_back("--tubes");
       if (opt.closed) args.push_back("--closed");
       if (opt.force) args.push_back("--force");
+      for (const std::string& p : opt.params) args.insert(args.end(), {"--param", p});
       running[spawn(exe, args, base.string() + ".log")] = {next, Clock::now()};
       outcomes[next].ran = true;
       ++next;
@@ -366,6 +376,10 @@ void add_batch_command(CLI::App& app, const GlobalOptions& global) {
       ->excludes(keep_all);
   cmd->add_flag("--closed", opt->closed, "Keep every surface closed: do not open it at rims found in the strokes");
   cmd->add_flag("--force", opt->force, "Write surfaces also where the strokes do not seem to depict one");
+  cmd->add_option("--param", opt->params,
+                  "NAME=VALUE: set a pipeline parameter of every run by its dotted name, as `surface "
+                  "--param` does (over each sketch file's own). Repeatable")
+      ->allow_extra_args(false);
   cmd->callback([opt, &global] { run_batch(*opt, global); });
 }
 
