@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 namespace sketchsurf {
@@ -73,14 +74,18 @@ std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, c
   // The flagged triangles in the cells their boxes overlap; every triangle then meets those in
   // the cells its own box overlaps.
   std::unordered_map<std::uint64_t, std::vector<int>> grid;
+  V3 flagged_lo = V3::Constant(std::numeric_limits<double>::infinity()), flagged_hi = -flagged_lo;
   for (int f = 0; f < F.rows(); ++f) {
     if (!flagged(f)) continue;
+    flagged_lo = flagged_lo.cwiseMin(lo[f]);
+    flagged_hi = flagged_hi.cwiseMax(hi[f]);
     const auto c0 = cell_of(lo[f]), c1 = cell_of(hi[f]);
     for (long long x = c0.x(); x <= c1.x(); ++x)
       for (long long y = c0.y(); y <= c1.y(); ++y)
         for (long long z = c0.z(); z <= c1.z(); ++z) grid[key({x, y, z})].push_back(f);
   }
   for (int a = 0; a < F.rows(); ++a) {
+    if ((lo[a].array() > flagged_hi.array()).any() || (flagged_lo.array() > hi[a].array()).any()) continue;
     const auto c0 = cell_of(lo[a]), c1 = cell_of(hi[a]);
     for (long long x = c0.x(); x <= c1.x(); ++x)
       for (long long y = c0.y(); y <= c1.y(); ++y)
