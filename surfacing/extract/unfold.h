@@ -29,7 +29,7 @@ struct UnfoldOptions {
                             ///< too; 0 = off (nothing is smoothed)
   int rounds = 6;           ///< at most this many passes of each fill, each one ring wider than
                             ///< the last
-  double max_share = 0.05;  ///< a connected zone with more than this share of the mesh's
+  double max_share = 0.15;  ///< a connected zone with more than this share of the mesh's
                             ///< vertices is left alone
   bool valid(std::string* why = nullptr) const;
 };
