@@ -463,24 +463,32 @@ void drop_specks(TriangleArrays& mesh, double min_fraction) {
 MeshTopology closed_topology(const TriangleArrays& mesh) {
   MeshTopology t;
   const std::vector<int> part = vertex_components(mesh.F, mesh.V.rows());
-  std::vector<std::array<int, 2>> edges;
-  edges.reserve(static_cast<std::size_t>(3 * mesh.F.rows()));
+  // The edges {a, b} (a < b), grouped by a: each distinct b in a's group is one edge.
+  const std::size_t n = part.size();
+  std::vector<std::size_t> start(n + 1, 0);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) ++start[static_cast<std::size_t>(std::min(mesh.F(f, k), mesh.F(f, (k + 1) % 3))) + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> other(start[n]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
-      edges.push_back({std::min(a, b), std::max(a, b)});
+      other[fill[static_cast<std::size_t>(std::min(a, b))]++] = std::max(a, b);
     }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   // Per component (keyed by its lowest vertex): V, E, F.
-  const std::size_t n = part.size();
   std::vector<long> v(n, 0), e(n, 0), f(n, 0);
   std::vector<char> used(n, 0);
   for (Eigen::Index i = 0; i < mesh.F.rows(); ++i) {
     ++f[static_cast<std::size_t>(part[static_cast<std::size_t>(mesh.F(i, 0))])];
     for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(mesh.F(i, k))] = 1;
   }
-  for (const auto& [a, b] : edges) ++e[static_cast<std::size_t>(part[static_cast<std::size_t>(a)])];
+  for (std::size_t a = 0; a < n; ++a) {
+    const auto first = other.begin() + static_cast<std::ptrdiff_t>(start[a]);
+    const auto last = other.begin() + static_cast<std::ptrdiff_t>(start[a + 1]);
+    std::sort(first, last);
+    e[static_cast<std::size_t>(part[a])] += std::distance(first, std::unique(first, last));
+  }
   for (std::size_t i = 0; i < n; ++i)
     if (used[i]) ++v[static_cast<std::size_t>(part[i])];
   for (std::size_t r = 0; r < n; ++r) {
