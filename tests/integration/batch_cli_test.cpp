@@ -82,23 +82,26 @@ TEST(BatchCli, SurfacesEverySketchAndReportsTheCorruptOne) {
   EXPECT_GT(read_mesh(dir / "again" / "cube.obj").n_faces(), 500u);
 }
 
-TEST(BatchCli, TubesReachEverySketch) {
+// `batch` run on `sketch` alone (written as in/NAME.json) with `options`: its report.
+nlohmann::json batch_report(const Sketch& sketch, const std::string& name, const std::string& options) {
   const fs::path dir = testing::scratch_dir("sketchsurf_batch_");
-  write_quick(testing::sphere_with_antenna_sketch(), dir / "in" / "antenna.json");
-  const testing::CliRun r = testing::run_cli(
-      "batch " + quoted(dir / "in") + " -o " + quoted(dir / "out") + " --tubes", dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(read_json(dir / "out" / "antenna.json")["tubes"], 1);
+  write_quick(sketch, dir / "in" / (name + ".json"));
+  const testing::CliRun r =
+      testing::run_cli("batch " + quoted(dir / "in") + " -o " + quoted(dir / "out") + " " + options, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return r.exit_code == 0 ? read_json(dir / "out" / (name + ".json")) : nlohmann::json{};
+}
+
+TEST(BatchCli, TubesReachEverySketch) {
+  EXPECT_EQ(batch_report(testing::sphere_with_antenna_sketch(), "antenna", "--tubes")["tubes"], 1);
 }
 
 TEST(BatchCli, ParametersReachEveryRunAndAWrongNameStopsBeforeAny) {
+  // The sketch file says 2 restarts; --param wins.
+  EXPECT_EQ(batch_report(testing::cube_sketch(), "cube", "--param segment.restarts=1")["restarts"], 1);
+
   const fs::path dir = testing::scratch_dir("sketchsurf_batch_");
   write_quick(testing::cube_sketch(), dir / "in" / "cube.json");
-  const testing::CliRun r = testing::run_cli(
-      "batch " + quoted(dir / "in") + " -o " + quoted(dir / "out") + " --param segment.restarts=1", dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(read_json(dir / "out" / "cube.json")["restarts"], 1);  // the file says 2
-
   const testing::CliRun wrong = testing::run_cli(
       "batch " + quoted(dir / "in") + " -o " + quoted(dir / "wrong") + " --param segment.restart=1", dir);
   EXPECT_EQ(wrong.exit_code, 2) << wrong.err;
