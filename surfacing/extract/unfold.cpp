@@ -111,13 +111,13 @@ void drop_large_parts(TriMesh& mesh, const Eigen::MatrixX3d& reference, std::siz
 enum class Fill { bilaplacian, membrane };
 
 // Fills `zone` (its vertices that are neither fixed nor on the mesh's border) as `fill` says, the
-// other vertices held: one sparse solve. Returns the vertices moved.
-std::size_t fill_zone(TriMesh& mesh, const std::vector<char>& zone, const std::vector<std::uint8_t>& fixed, Fill fill) {
+// other vertices held: one sparse solve.
+void fill_zone(TriMesh& mesh, const std::vector<char>& zone, const std::vector<std::uint8_t>& fixed, Fill fill) {
   std::vector<int> index(zone.size(), -1);
   int m = 0;
   for (auto v : mesh.vertices())
     if (zone[v.idx()] && (fixed.empty() || !fixed[v.idx()]) && !mesh.is_boundary(v)) index[v.idx()] = m++;
-  if (m == 0) return 0;
+  if (m == 0) return;
   // One row of the graph Laplacian per vertex in the rows (the unknowns, and for the bi-Laplacian
   // their neighbours too): the unknowns' coefficients in `rows`, the held vertices' part in `held`.
   std::vector<char> in_rows(zone.size(), 0);
@@ -161,17 +161,16 @@ std::size_t fill_zone(TriMesh& mesh, const std::vector<char>& zone, const std::v
   Eigen::MatrixX3d x;
   if (fill == Fill::membrane) {
     const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(rows);
-    if (solver.info() != Eigen::Success) return 0;
+    if (solver.info() != Eigen::Success) return;
     x = solver.solve(rhs);
   } else {
     const Eigen::SparseMatrix<double> normal = rows.transpose() * rows;
     const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
-    if (solver.info() != Eigen::Success) return 0;
+    if (solver.info() != Eigen::Success) return;
     x = solver.solve(rows.transpose() * rhs);
   }
   for (auto v : mesh.vertices())
     if (const int i = index[v.idx()]; i >= 0) mesh.set_point(v, TriMesh::Point(x(i, 0), x(i, 1), x(i, 2)));
-  return static_cast<std::size_t>(m);
 }
 
 }  // namespace

@@ -10,8 +10,8 @@
 // are left (the fill can overshoot where the surface round a fold turns sharply), by a membrane
 // spanning the zone (each vertex at the mean of its neighbours), which cannot overshoot.
 // A fold is a few triangles wide and the fill over it is as small; a zone that grows past
-// max_share of the mesh is a shape a fill would flatten (a cap, a whole part), and is left
-// as the solve made it. The rest of the surface is not touched.
+// max_share of the mesh is a shape a fill would flatten (a cap, a whole part), and is left as it
+// was before that fill. The rest of the surface is not touched.
 
 #include <Eigen/Core>
 #include <cstddef>
