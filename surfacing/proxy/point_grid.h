@@ -87,6 +87,22 @@ class PointGrid {
     return best;
   }
 
+  /// Whether some point lies within `radius` of p: the answer of nearest(p, radius).second <=
+  /// radius^2, found without looking for the nearest one (the first point near enough ends it).
+  bool any_within(const Eigen::Vector3d& p, double radius) const {
+    const double r2 = radius * radius;
+    const double pad = radius + 1e-9 * cell_;  // binning rounds: never miss a cell
+    const std::array<int, 3> lo = coords((p.array() - pad).matrix().transpose());
+    const std::array<int, 3> hi = coords((p.array() + pad).matrix().transpose());
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        const std::size_t end = start_[index({hi[0], y, z}) + 1];
+        for (std::size_t k = start_[index({lo[0], y, z})]; k < end; ++k)
+          if ((V_.row(vertices_[k]).transpose() - p).squaredNorm() <= r2) return true;
+      }
+    return false;
+  }
+
   /// Calls fn(index, squared distance) for every point within `radius` of p.
   template <class Fn>
   void for_each_within(const Eigen::Vector3d& p, double radius, Fn&& fn) const {

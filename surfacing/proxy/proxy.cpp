@@ -509,31 +509,41 @@ double surface_area(const TriangleArrays& mesh) {
 }
 
 // Area fraction of `mesh` whose faces' centroids lie farther than `distance` from every point of
-// `strokes` (a grid over the stroke points).
-double far_fraction(const TriangleArrays& mesh, const PointGrid& strokes, double distance) {
-  double far = 0.0, total = 0.0;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
-                          c = mesh.V.row(mesh.F(f, 2));
-    const Eigen::Vector3d centroid = (a + b + c) / 3.0;
-    const double area = triangle_area(mesh.V, mesh.F, f);
-    total += area;
-    if (strokes.nearest(centroid, distance).second > distance * distance) far += area;
+// `strokes` (a grid over the stroke points). Faces are tested on `threads` threads and their
+// areas summed in order: the same whatever the threads.
+double far_fraction(const TriangleArrays& mesh, const PointGrid& strokes, double distance,
+                    unsigned threads) {
+  const auto faces = static_cast<std::size_t>(mesh.F.rows());
+  std::vector<double> area(faces), far(faces, 0.0);
+  parallel_for(0, faces, threads, [&](std::size_t k) {
+    const auto f = static_cast<Eigen::Index>(k);
+    const Eigen::Vector3d centroid =
+        (mesh.V.row(mesh.F(f, 0)) + mesh.V.row(mesh.F(f, 1)) + mesh.V.row(mesh.F(f, 2))).transpose() / 3.0;
+    area[k] = triangle_area(mesh.V, mesh.F, f);
+    if (!strokes.any_within(centroid, distance)) far[k] = area[k];
+  });
+  double total = 0.0, far_total = 0.0;
+  for (std::size_t k = 0; k < faces; ++k) {
+    total += area[k];
+    far_total += far[k];
   }
-  return total > 0.0 ? far / total : 0.0;
+  return total > 0.0 ? far_total / total : 0.0;
 }
 
 // The fraction of `points` (the strokes, a cell apart) farther than `distance` from every vertex of
 // `mesh` (a polygonised zero set: its vertices lie under a cell apart). A stroke lies on the
 // surface it depicts; a smoothing that leaves many of them off its surface has melted away thin
 // parts (a lamp's neck inside a web from its head to its base, a chair's legs in a block).
-double missed_fraction(const TriangleArrays& mesh, const Eigen::MatrixX3d& points, double distance) {
+double missed_fraction(const TriangleArrays& mesh, const Eigen::MatrixX3d& points, double distance,
+                       unsigned threads) {
   if (points.rows() == 0 || mesh.V.rows() == 0) return 1.0;
   const PointGrid vertices(mesh.V);
-  std::size_t missed = 0;
-  for (Eigen::Index i = 0; i < points.rows(); ++i)
-    if (vertices.nearest(points.row(i).transpose(), distance).second > distance * distance) ++missed;
-  return static_cast<double>(missed) / static_cast<double>(points.rows());
+  std::vector<char> missed(static_cast<std::size_t>(points.rows()), 0);
+  parallel_for(0, missed.size(), threads, [&](std::size_t i) {
+    missed[i] = !vertices.any_within(points.row(static_cast<Eigen::Index>(i)).transpose(), distance);
+  });
+  return static_cast<double>(std::count(missed.begin(), missed.end(), 1)) /
+         static_cast<double>(points.rows());
 }
 
 // How the surface farther than `radius` from every stroke (`strokes`, the stroke points) is held
@@ -558,6 +568,7 @@ Framing surface_framing(const TriangleArrays& mesh, const PointGrid& strokes, co
                           c = mesh.V.row(mesh.F(f, 2));
     area[k] = triangle_area(mesh.V, mesh.F, f);
     const Eigen::Vector3d x = (a + b + c) / 3.0;
+    if (strokes.any_within(x, radius)) return;
     const double d = std::sqrt(strokes.nearest(x).second);
     Eigen::Vector3d n = (b - a).cross(c - a);
     if (!(d > radius) || !(n.norm() > 0.0)) return;
@@ -1049,7 +1060,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (try_bumps(c, topology, saddles.bridges, Kind::kBridges)) c.bridges = saddles.bridges.size();
     if (try_bumps(c, topology, saddles.necks, Kind::kNecks)) c.necks = saddles.necks.size();
     if (c.mesh.F.rows() > 0) {
-      c.far = far_fraction(c.mesh, stroke_grid, options.far_distance);
+      c.far = far_fraction(c.mesh, stroke_grid, options.far_distance, threads);
       c.genus = topology.genus;
       c.components = topology.components;
     }
@@ -1107,7 +1118,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
         kept.mesh = std::move(mesh);
         kept.genus = topology.genus;
         kept.components = topology.components;
-        kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance);
+        kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance, threads);
         caps = std::move(near_caps);
         r.confine_radius = options.confine_near;
       }
@@ -1165,7 +1176,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (try_bumps(kept, topology, kept.undrawn, Kind::kWindows)) {
       kept.windows += kept.undrawn.size();
       kept.genus = topology.genus;
-      kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance);
+      kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance, threads);
     }
     r.polygonize_seconds += seconds_since(t);
   }
@@ -1281,7 +1292,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.necks = kept.necks;
   r.far_area = kept.far;
   if (kept.mesh.F.rows() > 0)
-    r.missed_strokes = missed_fraction(kept.mesh, stroke_points, options.miss_distance);
+    r.missed_strokes = missed_fraction(kept.mesh, stroke_points, options.miss_distance, threads);
   r.vipss = kept.vipss->summary;
   r.evaluations = kept.evaluations;
   // Sections too sparse for VIPSS (a dress's waist and hem and a profile: its zero set runs out
@@ -1293,8 +1304,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     loft_options.fit = options.loft_fit;
     if (std::optional<Loft> loft = loft_sections(unit, loft_options)) {
       r.loft_sections = loft->sections;
-      r.far_area = far_fraction(loft->mesh, stroke_grid, options.far_distance);
-      r.missed_strokes = missed_fraction(loft->mesh, stroke_points, options.miss_distance);
+      r.far_area = far_fraction(loft->mesh, stroke_grid, options.far_distance, threads);
+      r.missed_strokes = missed_fraction(loft->mesh, stroke_points, options.miss_distance, threads);
       r.polygonize_seconds += seconds_since(t);
       t0 = Clock::now();
       TriMesh mesh = mesh_from_matrices(loft->mesh.V, loft->mesh.F);

@@ -1,4 +1,4 @@
-// Nearest-point queries of PointGrid against a brute-force scan.
+// Nearest-point and within-radius queries of PointGrid against a brute-force scan.
 
 #include "surfacing/proxy/point_grid.h"
 
@@ -47,7 +47,12 @@ TEST(PointGrid, NearestIsTheBruteForceNearestWithTiesToTheLowerIndex) {
     } else if (limited.first >= 0) {
       EXPECT_GT(std::sqrt(limited.second), limit) << "query " << q;
     }
+    // Some point within a radius, whatever the radius against the cells (smaller, about one, many).
+    for (const double radius : {0.01, 0.05, 0.2, 1.5})
+      EXPECT_EQ(grid.any_within(p, radius), expected.second <= radius * radius)
+          << "query " << q << " radius " << radius;
   }
+
   // A query exactly on a duplicated point: the lower index, at distance 0.
   const auto on = grid.nearest(V.row(700).transpose());
   EXPECT_EQ(on.first, 400);
@@ -66,6 +71,9 @@ TEST(PointGrid, EqualDistancesGoToTheLowerIndex) {
   const auto got = grid.nearest(Eigen::Vector3d::Zero());
   EXPECT_EQ(got.first, 0);
   EXPECT_EQ(got.second, 0.25);
+  // A point exactly at the radius counts as within it.
+  EXPECT_TRUE(grid.any_within(Eigen::Vector3d::Zero(), 0.5));
+  EXPECT_FALSE(grid.any_within(Eigen::Vector3d::Zero(), 0.4999));
 }
 
 }  // namespace
