@@ -15,6 +15,10 @@ Eigen::MatrixX3d vertex_matrix(const TriMesh& mesh) {
   return V;
 }
 
+void set_vertex_matrix(TriMesh& mesh, const Eigen::MatrixX3d& V) {
+  for (auto v : mesh.vertices()) mesh.set_point(v, to_openmesh(V.row(v.idx()).transpose()));
+}
+
 std::vector<int> vertex_components(const Eigen::MatrixX3i& F, Eigen::Index vertices) {
   std::vector<int> parent(static_cast<std::size_t>(vertices));
   std::iota(parent.begin(), parent.end(), 0);

@@ -23,6 +23,8 @@ inline OpenMesh::Vec3d to_openmesh(const Eigen::Vector3d& p) { return {p.x(), p.
 
 /// Vertex positions as a #V x 3 matrix (vertex i in row i).
 Eigen::MatrixX3d vertex_matrix(const TriMesh& mesh);
+/// Sets every vertex's position from row i of V (#V x 3): the inverse of vertex_matrix().
+void set_vertex_matrix(TriMesh& mesh, const Eigen::MatrixX3d& V);
 /// Triangle vertex indices as a #F x 3 matrix.
 Eigen::MatrixX3i face_matrix(const TriMesh& mesh);
 /// The area of triangle f of F (#F x 3) over positions V.

@@ -1,6 +1,7 @@
 #include "surfacing/extract/extract.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -93,6 +94,67 @@ StrokeSegments surface_strokes(const Sketch& sketch) {
   Sketch inner = sketch;
   for (Stroke& s : inner.strokes) s.ignored = s.ignored || s.boundary;
   return stroke_segments(inner, false);
+}
+
+// E_mesh solved from the seamed proxy (its positions `start_positions`) with the regions flagged
+// kRegionHeld in `at_proxy` held there and those flagged kRegionPulled pulled toward it, then its
+// folds ironed out (unfold.h). `held` receives the held vertices, `folds` the crossing face pairs
+// left; `summary` the solve's, the back sides' and the unfold's figures.
+void solve_held(LabeledMesh& seamed, const std::vector<ImplicitModel>& models, const MeshConstraints& base,
+                const std::vector<char>& at_proxy, const Eigen::MatrixX3d& start_positions,
+                const std::vector<std::uint8_t>& on_plane, double diagonal, const ExtractOptions& options,
+                const Progress& progress, std::vector<char>& held, ExtractSummary& summary,
+                std::vector<std::array<int, 2>>& folds) {
+  MeshConstraints c = base;
+  held.assign(seamed.labels.size(), 0);
+  std::vector<char> attracted(seamed.labels.size(), 0);
+  for (const AttractTarget& target : c.attract) attracted[target.vertex] = 1;
+  for (auto v : seamed.mesh.vertices()) {
+    const auto& l = seamed.labels[v.idx()];
+    held[v.idx()] = std::any_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] == kRegionHeld; });
+    if (attracted[v.idx()]) continue;  // an open border follows its strokes
+    if (held[v.idx()]) {
+      c.held.push_back(v.idx());
+      c.attract.push_back({v.idx(), start_positions.row(v.idx()).transpose()});
+    } else if (!seamed.mesh.is_boundary(v) &&  // an open border keeps its 1D Laplacian (energy.h)
+               std::all_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] == kRegionPulled; })) {
+      c.attract.push_back(
+          {v.idx(), start_positions.row(v.idx()).transpose(), options.smooth_fallback.pull_weight});
+    }
+  }
+  // Vertices on a face drawn in, in regions that lie mostly on such faces (the face's own region:
+  // a region that only touches a face, a thin part's side or a web between parts, is not one).
+  if (options.face_tolerance > 0.0 && !options.drawn_faces.empty()) {
+    std::vector<char> on_face(seamed.labels.size(), 0);
+    std::vector<std::size_t> region_on(models.size(), 0), region_all(models.size(), 0);
+    for (auto v : seamed.mesh.vertices()) {
+      const Eigen::Vector3d p = start_positions.row(v.idx()).transpose();
+      on_face[v.idx()] = std::any_of(options.drawn_faces.begin(), options.drawn_faces.end(), [&](const Plane& face) {
+        return std::abs(face.signed_distance(p)) <= options.face_tolerance * diagonal;
+      });
+      for (int r : seamed.labels[v.idx()]) {
+        ++region_all[static_cast<std::size_t>(r)];
+        region_on[static_cast<std::size_t>(r)] += on_face[v.idx()];
+      }
+    }
+    for (auto v : seamed.mesh.vertices()) {
+      const auto& l = seamed.labels[v.idx()];
+      if (on_face[v.idx()] && !held[v.idx()] && !attracted[v.idx()] &&
+          std::all_of(l.begin(), l.end(), [&](int r) {
+            return static_cast<double>(region_on[static_cast<std::size_t>(r)]) >=
+                   options.face_share * static_cast<double>(region_all[static_cast<std::size_t>(r)]);
+          }))
+        c.on_drawn_face.push_back(v.idx());
+    }
+  }
+  // Thin parts' far sides, found on the proxy, end just inside their region's surface, apart
+  // from the near side (back_sides.h); held vertices stay where they are held.
+  c.inside = find_back_sides(seamed, models, options.back_sides);
+  std::erase_if(c.inside, [&](int v) { return held[v] != 0; });
+  c.inside_gap = options.back_sides.gap * diagonal;
+  summary.back_side_vertices = c.inside.size();
+  summary.optimization = optimize_mesh(seamed, models, c, options.energy, progress);
+  summary.unfold = unfold(seamed.mesh, start_positions, on_plane, options.unfold, &folds);
 }
 
 }  // namespace
@@ -189,57 +251,49 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   // Regions whose model cannot follow their strokes stay at the proxy; doubly curved ones only a
   // little nearer their strokes are pulled toward it (smooth_fallback.h).
   const Eigen::MatrixX3d start_positions = vertex_matrix(seamed.mesh);
-  const std::vector<char> at_proxy =
+  std::vector<char> at_proxy =
       regions_at_proxy(seamed, models, open ? surface_strokes(sketch) : *constraints.strokes, diagonal,
                        options.smooth_fallback, options.energy, &summary.smooth_fallback);
-  std::vector<char> held(seamed.labels.size(), 0), attracted(seamed.labels.size(), 0);
-  for (const AttractTarget& target : constraints.attract) attracted[target.vertex] = 1;
-  for (auto v : seamed.mesh.vertices()) {
-    const auto& l = seamed.labels[v.idx()];
-    held[v.idx()] = std::any_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] == kRegionHeld; });
-    if (attracted[v.idx()]) continue;  // an open border follows its strokes
-    if (held[v.idx()]) {
-      constraints.held.push_back(v.idx());
-      constraints.attract.push_back({v.idx(), start_positions.row(v.idx()).transpose()});
-    } else if (!seamed.mesh.is_boundary(v) &&  // an open border keeps its 1D Laplacian (energy.h)
-               std::all_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] == kRegionPulled; })) {
-      constraints.attract.push_back(
-          {v.idx(), start_positions.row(v.idx()).transpose(), options.smooth_fallback.pull_weight});
-    }
-  }
-  // Vertices on a face drawn in, in regions that lie mostly on such faces (the face's own region:
-  // a region that only touches a face, a thin part's side or a web between parts, is not one).
-  if (options.face_tolerance > 0.0 && !options.drawn_faces.empty()) {
-    std::vector<char> on_face(seamed.labels.size(), 0);
-    std::vector<std::size_t> region_on(models.size(), 0), region_all(models.size(), 0);
-    for (auto v : seamed.mesh.vertices()) {
-      const Eigen::Vector3d p = start_positions.row(v.idx()).transpose();
-      on_face[v.idx()] = std::any_of(options.drawn_faces.begin(), options.drawn_faces.end(), [&](const Plane& face) {
-        return std::abs(face.signed_distance(p)) <= options.face_tolerance * diagonal;
-      });
-      for (int r : seamed.labels[v.idx()]) {
-        ++region_all[static_cast<std::size_t>(r)];
-        region_on[static_cast<std::size_t>(r)] += on_face[v.idx()];
+  std::vector<char> held;
+  std::vector<std::array<int, 2>> folds;
+  solve_held(seamed, models, constraints, at_proxy, start_positions, on_plane, diagonal, options, progress,
+             held, summary, folds);
+  // A fold the fills leave is a region's model running through another's surface over more than
+  // a fill can span: the regions of its triangles cannot follow their strokes there without
+  // crossing, so they are held at the proxy and the mesh is solved again from the start. That
+  // solve is kept when it has fewer folds and stays about as near the strokes (stroke distance
+  // median at most hold_fit times the first's): where the proxy itself is far from the strokes
+  // (a shoe's sole rounder than drawn, a lamp's lumpy head) holding it trades an inner fold for a
+  // wrong shape.
+  if (!folds.empty() && options.unfold.hold_fit > 0.0) {
+    const std::vector<char> before = at_proxy;
+    for (const auto& pair : folds)
+      for (const int f : pair)
+        for (auto v : seamed.mesh.fv_range(seamed.mesh.face_handle(f)))
+          for (const int r : seamed.labels[v.idx()]) at_proxy[static_cast<std::size_t>(r)] = kRegionHeld;
+    const auto count = static_cast<std::size_t>(std::count(at_proxy.begin(), at_proxy.end(), kRegionHeld) -
+                                                std::count(before.begin(), before.end(), kRegionHeld));
+    if (count > 0) {
+      const auto fit = [&] {
+        return stroke_distance(seamed.mesh, sketch, diagonal, false, options.energy.threads).median;
+      };
+      const Eigen::MatrixX3d first = vertex_matrix(seamed.mesh);
+      const double first_fit = fit();
+      const ExtractSummary first_summary = summary;
+      std::vector<char> first_held = held;
+      set_vertex_matrix(seamed.mesh, start_positions);
+      std::vector<std::array<int, 2>> left;
+      solve_held(seamed, models, constraints, at_proxy, start_positions, on_plane, diagonal, options,
+                 progress, held, summary, left);
+      if (left.size() < folds.size() && fit() <= options.unfold.hold_fit * first_fit) {
+        summary.unfold.held_regions = count;
+      } else {
+        set_vertex_matrix(seamed.mesh, first);
+        summary = first_summary;
+        held = std::move(first_held);
       }
     }
-    for (auto v : seamed.mesh.vertices()) {
-      const auto& l = seamed.labels[v.idx()];
-      if (on_face[v.idx()] && !held[v.idx()] && !attracted[v.idx()] &&
-          std::all_of(l.begin(), l.end(), [&](int r) {
-            return static_cast<double>(region_on[static_cast<std::size_t>(r)]) >=
-                   options.face_share * static_cast<double>(region_all[static_cast<std::size_t>(r)]);
-          }))
-        constraints.on_drawn_face.push_back(v.idx());
-    }
   }
-  // Thin parts' far sides, found on the proxy, end just inside their region's surface, apart
-  // from the near side (back_sides.h); held vertices stay where they are held.
-  constraints.inside = find_back_sides(seamed, models, options.back_sides);
-  std::erase_if(constraints.inside, [&](int v) { return held[v] != 0; });
-  constraints.inside_gap = options.back_sides.gap * diagonal;
-  summary.back_side_vertices = constraints.inside.size();
-  summary.optimization = optimize_mesh(seamed, models, constraints, options.energy, progress);
-  summary.unfold = unfold(seamed.mesh, start_positions, on_plane, options.unfold);
   summary.optimize_s = seconds_since(t);
 
   // Region and crease flags, from the final positions.

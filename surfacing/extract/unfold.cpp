@@ -20,6 +20,10 @@ bool UnfoldOptions::valid(std::string* why) const {
     if (why) *why = "extract.unfold_max_share must be in (0, 1]";
     return false;
   }
+  if (!(hold_fit >= 0.0)) {
+    if (why) *why = "extract.unfold_hold_fit must be >= 0";
+    return false;
+  }
   return true;
 }
 
@@ -176,8 +180,9 @@ void fill_zone(TriMesh& mesh, const std::vector<char>& zone, const std::vector<s
 }  // namespace
 
 UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& fixed,
-                     const UnfoldOptions& options) {
+                     const UnfoldOptions& options, std::vector<std::array<int, 2>>* left) {
   UnfoldSummary summary;
+  if (left) left->clear();
   if (options.rings == 0) return summary;
   const Eigen::MatrixX3d solved = vertex_matrix(mesh);
   const Eigen::MatrixX3i F = face_matrix(mesh);
@@ -211,6 +216,7 @@ UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::ve
   const Eigen::MatrixX3d now = vertex_matrix(mesh);
   for (Eigen::Index v = 0; v < now.rows(); ++v) summary.moved_vertices += now.row(v) != solved.row(v);
   summary.skipped_vertices = static_cast<std::size_t>(std::count(skipped.begin(), skipped.end(), 1));
+  if (left) *left = std::move(crossing);
   return summary;
 }
 

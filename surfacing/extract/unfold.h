@@ -14,6 +14,7 @@
 // was before that fill. The rest of the surface is not touched.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -31,6 +32,9 @@ struct UnfoldOptions {
                             ///< the last
   double max_share = 0.15;  ///< a connected zone with more than this share of the mesh's
                             ///< vertices is left alone
+  double hold_fit = 1.25;   ///< regions whose triangles still cross after both fills are held at
+                            ///< the proxy and the mesh solved again (extract()), kept when its
+                            ///< stroke distance median is at most this times the first's; 0 = off
   bool valid(std::string* why = nullptr) const;
 };
 
@@ -42,12 +46,15 @@ struct UnfoldSummary {
   std::size_t skipped_vertices = 0;  ///< vertices of zones the membrane left alone (larger than
                                      ///< max_share)
   int rounds = 0;                  ///< passes made, of both fills
+  std::size_t held_regions = 0;    ///< regions held at the proxy for the folds left (extract()):
+                                   ///< the figures above are then the second solve's
 };
 
 /// Irons out the folds of `mesh` (see the file comment): the triangles that cross at the mesh's
 /// positions but not at `start` (its positions before the solve, one row per vertex). Vertices
 /// flagged in `fixed` (empty: none) and those on the mesh's border keep their positions.
+/// `left` (if given) receives the crossing face pairs left (UnfoldSummary::left_pairs of them).
 UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& fixed,
-                     const UnfoldOptions& options = {});
+                     const UnfoldOptions& options = {}, std::vector<std::array<int, 2>>* left = nullptr);
 
 }  // namespace sketchsurf

@@ -153,7 +153,7 @@ void attract_to_points(TriMesh& mesh, const Eigen::MatrixX3d& targets, const Att
     V = solver.solve(rhs);
     if (!V.allFinite()) throw Error::processing("least-squares mesh: the solve failed");
   }
-  for (const auto v : mesh.vertices()) mesh.set_point(v, to_openmesh(V.row(v.idx())));
+  set_vertex_matrix(mesh, V);
   mesh.update_normals();
   nearest_vertices(V, targets, options.threads, &distances);
   s.median_after = median(distances);

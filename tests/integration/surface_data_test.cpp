@@ -243,6 +243,18 @@ TEST(FoldData, ATorchsFlameDoesNotFoldThroughItself) {
   EXPECT_LT(r.report.stroke_distance.median, 0.005);
 }
 
+TEST(FoldData, AChestsFoldTooWideToFillIsHeldAtTheProxy) {
+  // tilt/Dungeon_Chest: the solve folds a region's surface through another's over more than a fill
+  // may span (both fills leave over a hundred crossing pairs). That region is held at the proxy
+  // and the mesh solved again: no fold is left and the strokes stay about as near.
+  const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "tilt" / "Dungeon_Chest.tilt");
+  const SurfaceResult r = Surfacer().run(sketch);
+  EXPECT_GE(r.report.extraction.unfold.held_regions, 1u);
+  EXPECT_EQ(r.report.extraction.unfold.left_pairs, 0u);
+  EXPECT_LE(count_self_intersections(r.mesh), count_self_intersections(r.proxy));
+  EXPECT_LT(r.report.stroke_distance.median, 0.006);
+}
+
 TEST(SectionData, ADressDrawnAsSectionsIsALoftedTube) {
   // vns/dress: a waist circle, a four-lobed hem below it and a profile through both. VIPSS's
   // surface ran out between them to the strokes' box (its cross-section a rectangle round the
