@@ -7,6 +7,8 @@
 #include <limits>
 #include <unordered_map>
 
+#include "surfacing/parallel.h"
+
 namespace sketchsurf {
 
 namespace {
@@ -41,18 +43,13 @@ bool triangles_cross(const std::array<V3, 3>& A, const std::array<V3, 3>& B) {
 
 }  // namespace
 
-std::vector<std::array<int, 2>> crossing_face_pairs(const TriMesh& mesh) {
-  return crossing_face_pairs(vertex_matrix(mesh), face_matrix(mesh));
-}
-
-std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
-  return crossing_face_pairs(V, F, {});
+std::vector<std::array<int, 2>> crossing_face_pairs(const TriMesh& mesh, unsigned threads) {
+  return crossing_face_pairs(vertex_matrix(mesh), face_matrix(mesh), {}, threads);
 }
 
 std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
-                                                    const std::vector<char>& among) {
-  std::vector<std::array<int, 2>> pairs;
-  if (F.rows() < 2) return pairs;
+                                                    const std::vector<char>& among, unsigned threads) {
+  if (F.rows() < 2) return {};
   const auto flagged = [&](int f) { return among.empty() || among[static_cast<std::size_t>(f)] != 0; };
   double edge_sum = 0.0;
   for (Eigen::Index f = 0; f < F.rows(); ++f)
@@ -84,35 +81,48 @@ std::vector<std::array<int, 2>> crossing_face_pairs(const Eigen::MatrixX3d& V, c
       for (long long y = c0.y(); y <= c1.y(); ++y)
         for (long long z = c0.z(); z <= c1.z(); ++z) grid[key({x, y, z})].push_back(f);
   }
-  for (int a = 0; a < F.rows(); ++a) {
-    if ((lo[a].array() > flagged_hi.array()).any() || (flagged_lo.array() > hi[a].array()).any()) continue;
-    const auto c0 = cell_of(lo[a]), c1 = cell_of(hi[a]);
-    for (long long x = c0.x(); x <= c1.x(); ++x)
-      for (long long y = c0.y(); y <= c1.y(); ++y)
-        for (long long z = c0.z(); z <= c1.z(); ++z) {
-          const std::uint64_t cell_key = key({x, y, z});
-          const auto faces = grid.find(cell_key);
-          if (faces == grid.end()) continue;
-          for (const int b : faces->second) {
-            if (b == a || (flagged(a) && b < a)) continue;  // a flagged pair is met from its lower triangle
-            if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
-            // Count the pair in one cell only: the one holding the low corner of the boxes' overlap.
-            if (key(cell_of(lo[a].cwiseMax(lo[b]))) != cell_key) continue;
-            bool shared = false;
-            for (int k = 0; k < 3; ++k)
-              for (int l = 0; l < 3; ++l) shared |= F(a, k) == F(b, l);
-            if (shared) continue;
-            const std::array<V3, 3> A = {V.row(F(a, 0)), V.row(F(a, 1)), V.row(F(a, 2))};
-            const std::array<V3, 3> B = {V.row(F(b, 0)), V.row(F(b, 1)), V.row(F(b, 2))};
-            if (triangles_cross(A, B)) pairs.push_back({std::min(a, b), std::max(a, b)});
+  // Blocks of triangles met in parallel, each with its own list (the lists are sorted together).
+  constexpr int kBlock = 1024;
+  const auto blocks = static_cast<std::size_t>((F.rows() + kBlock - 1) / kBlock);
+  std::vector<std::vector<std::array<int, 2>>> found(blocks);
+  parallel_for(0, blocks, threads, [&](std::size_t block) {
+    std::vector<std::array<int, 2>>& pairs = found[block];
+    const int first = static_cast<int>(block) * kBlock;
+    const int last = std::min<int>(first + kBlock, static_cast<int>(F.rows()));
+    for (int a = first; a < last; ++a) {
+      if ((lo[a].array() > flagged_hi.array()).any() || (flagged_lo.array() > hi[a].array()).any()) continue;
+      const auto c0 = cell_of(lo[a]), c1 = cell_of(hi[a]);
+      for (long long x = c0.x(); x <= c1.x(); ++x)
+        for (long long y = c0.y(); y <= c1.y(); ++y)
+          for (long long z = c0.z(); z <= c1.z(); ++z) {
+            const std::uint64_t cell_key = key({x, y, z});
+            const auto faces = grid.find(cell_key);
+            if (faces == grid.end()) continue;
+            for (const int b : faces->second) {
+              if (b == a || (flagged(a) && b < a)) continue;  // a flagged pair is met from its lower triangle
+              if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
+              // Count the pair in one cell only: the one holding the low corner of the boxes' overlap.
+              if (key(cell_of(lo[a].cwiseMax(lo[b]))) != cell_key) continue;
+              bool shared = false;
+              for (int k = 0; k < 3; ++k)
+                for (int l = 0; l < 3; ++l) shared |= F(a, k) == F(b, l);
+              if (shared) continue;
+              const std::array<V3, 3> A = {V.row(F(a, 0)), V.row(F(a, 1)), V.row(F(a, 2))};
+              const std::array<V3, 3> B = {V.row(F(b, 0)), V.row(F(b, 1)), V.row(F(b, 2))};
+              if (triangles_cross(A, B)) pairs.push_back({std::min(a, b), std::max(a, b)});
+            }
           }
-        }
-  }
+    }
+  });
+  std::vector<std::array<int, 2>> pairs;
+  for (const auto& block : found) pairs.insert(pairs.end(), block.begin(), block.end());
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());  // cells whose keys collide
   return pairs;
 }
 
-std::size_t count_self_intersections(const TriMesh& mesh) { return crossing_face_pairs(mesh).size(); }
+std::size_t count_self_intersections(const TriMesh& mesh, unsigned threads) {
+  return crossing_face_pairs(mesh, threads).size();
+}
 
 }  // namespace sketchsurf

@@ -154,7 +154,7 @@ void solve_held(LabeledMesh& seamed, const std::vector<ImplicitModel>& models, c
   c.inside_gap = options.back_sides.gap * diagonal;
   summary.back_side_vertices = c.inside.size();
   summary.optimization = optimize_mesh(seamed, models, c, options.energy, progress);
-  summary.unfold = unfold(seamed.mesh, start_positions, on_plane, options.unfold, &folds);
+  summary.unfold = unfold(seamed.mesh, start_positions, on_plane, options.unfold, options.energy.threads, &folds);
 }
 
 }  // namespace

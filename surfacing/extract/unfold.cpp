@@ -30,8 +30,9 @@ bool UnfoldOptions::valid(std::string* why) const {
 namespace {
 
 // The crossing pairs of `mesh` that are not in `before` (both sorted).
-std::vector<std::array<int, 2>> new_crossings(const TriMesh& mesh, const std::vector<std::array<int, 2>>& before) {
-  const std::vector<std::array<int, 2>> now = crossing_face_pairs(mesh);
+std::vector<std::array<int, 2>> new_crossings(const TriMesh& mesh, const std::vector<std::array<int, 2>>& before,
+                                              unsigned threads) {
+  const std::vector<std::array<int, 2>> now = crossing_face_pairs(mesh, threads);
   std::vector<std::array<int, 2>> out;
   std::set_difference(now.begin(), now.end(), before.begin(), before.end(), std::back_inserter(out));
   return out;
@@ -42,12 +43,12 @@ std::vector<std::array<int, 2>> new_crossings(const TriMesh& mesh, const std::ve
 std::vector<std::array<int, 2>> new_crossings(const TriMesh& mesh, const Eigen::MatrixX3i& F,
                                               const Eigen::MatrixX3d& was,
                                               const std::vector<std::array<int, 2>>& crossing,
-                                              const std::vector<std::array<int, 2>>& before) {
+                                              const std::vector<std::array<int, 2>>& before, unsigned threads) {
   const Eigen::MatrixX3d V = vertex_matrix(mesh);
   std::vector<char> moved(static_cast<std::size_t>(F.rows()), 0);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) moved[f] |= V.row(F(f, k)) != was.row(F(f, k));
-  const std::vector<std::array<int, 2>> found = crossing_face_pairs(V, F, moved);
+  const std::vector<std::array<int, 2>> found = crossing_face_pairs(V, F, moved, threads);
   std::vector<std::array<int, 2>> out, kept;
   std::set_difference(found.begin(), found.end(), before.begin(), before.end(), std::back_inserter(out));
   std::copy_if(crossing.begin(), crossing.end(), std::back_inserter(kept),
@@ -180,14 +181,14 @@ void fill_zone(TriMesh& mesh, const std::vector<char>& zone, const std::vector<s
 }  // namespace
 
 UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& fixed,
-                     const UnfoldOptions& options, std::vector<std::array<int, 2>>* left) {
+                     const UnfoldOptions& options, unsigned threads, std::vector<std::array<int, 2>>* left) {
   UnfoldSummary summary;
   if (left) left->clear();
   if (options.rings == 0) return summary;
   const Eigen::MatrixX3d solved = vertex_matrix(mesh);
   const Eigen::MatrixX3i F = face_matrix(mesh);
-  const std::vector<std::array<int, 2>> before = crossing_face_pairs(start, F);
-  std::vector<std::array<int, 2>> crossing = new_crossings(mesh, before);
+  const std::vector<std::array<int, 2>> before = crossing_face_pairs(start, F, {}, threads);
+  std::vector<std::array<int, 2>> crossing = new_crossings(mesh, before, threads);
   summary.crossing_pairs = crossing.size();
   const auto most = static_cast<std::size_t>(options.max_share * static_cast<double>(mesh.n_vertices()));
   std::vector<char> skipped;
@@ -209,7 +210,7 @@ UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::ve
       const Eigen::MatrixX3d was = vertex_matrix(mesh);
       drop_large_parts(mesh, reference, most, zone, skipped);
       fill_zone(mesh, zone, fixed, fill);
-      crossing = new_crossings(mesh, F, was, crossing, before);
+      crossing = new_crossings(mesh, F, was, crossing, before, threads);
     }
   }
   summary.left_pairs = crossing.size();

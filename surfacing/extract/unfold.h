@@ -53,8 +53,10 @@ struct UnfoldSummary {
 /// Irons out the folds of `mesh` (see the file comment): the triangles that cross at the mesh's
 /// positions but not at `start` (its positions before the solve, one row per vertex). Vertices
 /// flagged in `fixed` (empty: none) and those on the mesh's border keep their positions.
+/// Crossings are searched on `threads` threads (0 = all; the result does not depend on them).
 /// `left` (if given) receives the crossing face pairs left (UnfoldSummary::left_pairs of them).
 UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& fixed,
-                     const UnfoldOptions& options = {}, std::vector<std::array<int, 2>>* left = nullptr);
+                     const UnfoldOptions& options = {}, unsigned threads = 0,
+                     std::vector<std::array<int, 2>>* left = nullptr);
 
 }  // namespace sketchsurf

@@ -98,7 +98,7 @@ ShapeChecks check_shape(const TriMesh& mesh, const std::vector<int>& labels, con
   out.components = topology.components;
   out.genus = topology.genus;
   out.boundary_loops = topology.boundary_loops;
-  out.self_intersections = count_self_intersections(mesh);
+  out.self_intersections = count_self_intersections(mesh, options.threads);
 
   const StrokeSegments strokes = stroke_segments(sketch, true);
   const double diagonal = strokes.box.diagonal();

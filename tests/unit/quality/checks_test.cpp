@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "surfacing/quality/checks.h"
 #include "surfacing/self_intersections.h"
 #include "tests/support/shapes.h"
@@ -152,6 +154,23 @@ TEST(ShapeChecks, CrossingPairsAmongFlaggedTrianglesAreTheWholeSearchsPairsWithO
   EXPECT_EQ(crossing_face_pairs(V, F, among), expected);
   EXPECT_TRUE(crossing_face_pairs(V, F, std::vector<char>(among.size(), 0)).empty());
   EXPECT_EQ(crossing_face_pairs(V, F, std::vector<char>(among.size(), 1)), all);
+}
+
+TEST(ShapeChecks, CrossingPairsAreTheSameWhateverTheThreads) {
+  // Two overlapping spheres of 1,280 triangles each: the search runs in blocks of triangles.
+  const TriMesh mesh = joined(testing::icosphere(3, 0.5), testing::icosphere(3, 0.5, Eigen::Vector3d(0.5, 0.1, 0)));
+  const Eigen::MatrixX3d V = vertex_matrix(mesh);
+  const Eigen::MatrixX3i F = face_matrix(mesh);
+  const std::vector<std::array<int, 2>> one = crossing_face_pairs(V, F, {}, 1);
+  ASSERT_GT(one.size(), 50u);
+  ASSERT_TRUE(std::is_sorted(one.begin(), one.end()));
+  std::vector<char> among(static_cast<std::size_t>(F.rows()), 0);
+  for (std::size_t f = 0; f < among.size(); f += 5) among[f] = 1;
+  const std::vector<std::array<int, 2>> some = crossing_face_pairs(V, F, among, 1);
+  for (const unsigned threads : {2u, 3u, 8u}) {
+    EXPECT_EQ(crossing_face_pairs(V, F, {}, threads), one) << threads << " threads";
+    EXPECT_EQ(crossing_face_pairs(V, F, among, threads), some) << threads << " threads";
+  }
 }
 
 }  // namespace
