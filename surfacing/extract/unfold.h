@@ -32,9 +32,10 @@ struct UnfoldOptions {
                             ///< the last
   double max_share = 0.15;  ///< a connected zone with more than this share of the mesh's
                             ///< vertices is left alone
-  double hold_fit = 0.0;    ///< regions whose triangles still cross after both fills are held at
+  double hold_fit = 1.25;   ///< regions whose triangles still cross after both fills are held at
                             ///< the proxy and the mesh solved again (extract()), kept when its
-                            ///< stroke distance median is at most this times the first's (1.25 tried); 0 = off
+                            ///< stroke distance median and 95th percentile are each at most this
+                            ///< times the first's; 0 = off
   bool valid(std::string* why = nullptr) const;
 };
 

@@ -218,8 +218,8 @@ TEST(FaceData, AMousesFlatBottomIsNotDentedByTheShellsModel) {
 
 // A real sketch (path under the data folder) surfaced with the defaults, checked for what every
 // fold test asks: no fold left, and no more crossing triangles than its proxy has.
-SurfaceResult surfaced_without_folds(const fs::path& file, const Params& params = {}) {
-  SurfaceResult r = Surfacer(params).run(read_sketch(fs::path(SKETCHSURF_DATA_DIR) / file));
+SurfaceResult surfaced_without_folds(const fs::path& file) {
+  SurfaceResult r = Surfacer().run(read_sketch(fs::path(SKETCHSURF_DATA_DIR) / file));
   EXPECT_EQ(r.report.extraction.unfold.left_pairs, 0u) << file;
   EXPECT_LE(count_self_intersections(r.mesh), count_self_intersections(r.proxy)) << file;
   return r;
@@ -250,9 +250,7 @@ TEST(FoldData, AChestsFoldTooWideToFillIsHeldAtTheProxy) {
   // tilt/Dungeon_Chest: the solve folds a region's surface through another's over more than a fill
   // may span (both fills leave over a hundred crossing pairs). That region is held at the proxy
   // and the mesh solved again: no fold is left and the strokes stay about as near.
-  Params params;
-  params.extract.unfold.hold_fit = 1.25;  // off by default: a generated wineglass drawn in VR is worse
-  const SurfaceResult r = surfaced_without_folds(fs::path("tilt") / "Dungeon_Chest.tilt", params);
+  const SurfaceResult r = surfaced_without_folds(fs::path("tilt") / "Dungeon_Chest.tilt");
   EXPECT_GE(r.report.extraction.unfold.held_regions, 1u);
   EXPECT_LT(r.report.stroke_distance.median, 0.006);
 }
