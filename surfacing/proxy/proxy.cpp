@@ -1220,13 +1220,16 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   const auto faces = drawn_faces(strokes_box, stroke_points, options);
   int face_count = 0;
   for (const auto& axis : faces) face_count += axis[0] + axis[1];
-  // The kept solve cut at the strokes' box grown by `face_margin` on its faces (by confine_box
-  // elsewhere), when the surface reaches past that; whether the cut was kept.
-  const auto draw_in = [&](double face_margin) {
+  // Per side of the box ([axis][0: low, 1: high]), how far out of the strokes it is drawn in
+  // (0: not drawn in, left at the confinement's box).
+  using FaceMargins = std::array<std::array<double, 2>, 3>;
+  // The kept solve cut at the strokes' box grown by `margins` on the sides drawn in, when the
+  // surface reaches past that; whether the cut was kept.
+  const auto draw_in = [&](const FaceMargins& margins) {
     BoundingBox tight = within;
     for (int a = 0; a < 3; ++a) {
-      if (faces[a][0]) tight.min[a] = strokes_box.min[a] - face_margin;
-      if (faces[a][1]) tight.max[a] = strokes_box.max[a] + face_margin;
+      if (margins[a][0] > 0.0) tight.min[a] = strokes_box.min[a] - margins[a][0];
+      if (margins[a][1] > 0.0) tight.max[a] = strokes_box.max[a] + margins[a][1];
     }
     const auto reaches_past = [&](const TriangleArrays& mesh) {
       for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
@@ -1250,18 +1253,38 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // The planes of the faces drawn in (unit frame, outward normals): the surface lies on them
   // where they cut it.
   std::vector<Plane> drawn;
-  if (faces_drawn_in && face_count > 0)
-    if (const std::optional<double> margin = close_or_halfway(draw_in)) {
-      r.box_drawn_in = face_count;
+  if (faces_drawn_in && face_count > 0) {
+    // All faces together; where neither cut is kept, each face on its own over those kept before
+    // it: one face that no cut can draw in (a glass's thin foot, pierced even halfway out) does
+    // not keep the others (the glass's mouth) out at the box.
+    FaceMargins kept_margins{};
+    const auto with = [&](int axis, int side, double margin) {  // axis < 0: every face
+      FaceMargins m = kept_margins;
+      for (int a = 0; a < 3; ++a)
+        for (int s = 0; s < 2; ++s)
+          if (faces[a][s] && (axis < 0 || (a == axis && s == side))) m[a][s] = margin;
+      return m;
+    };
+    if (const std::optional<double> margin = close_or_halfway([&](double m) { return draw_in(with(-1, 0, m)); }))
+      kept_margins = with(-1, 0, *margin);
+    else if (face_count > 1)
       for (int a = 0; a < 3; ++a)
         for (int side = 0; side < 2; ++side)
-          if (faces[a][side]) {
-            Plane face;
-            face.normal = (side == 1 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(a);
-            face.offset = side == 1 ? -(strokes_box.max[a] + *margin) : strokes_box.min[a] - *margin;
-            drawn.push_back(face);
-          }
-    }
+          if (faces[a][side])
+            if (const std::optional<double> alone =
+                    close_or_halfway([&](double m) { return draw_in(with(a, side, m)); }))
+              kept_margins = with(a, side, *alone);
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side)
+        if (kept_margins[a][side] > 0.0) {
+          ++r.box_drawn_in;
+          Plane face;
+          face.normal = (side == 1 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(a);
+          face.offset = side == 1 ? -(strokes_box.max[a] + kept_margins[a][side])
+                                  : strokes_box.min[a] - kept_margins[a][side];
+          drawn.push_back(face);
+        }
+  }
   // The slanted faces the strokes draw (drawn_planes), cut close to their strokes in the same way
   // where the surface reaches past them.
   const std::vector<Plane> planes = faces_drawn_in ? drawn_planes(unit, options) : std::vector<Plane>{};

@@ -414,12 +414,18 @@ TEST(ProxyShape, BlobsReachingPastTheirStrokesAreNotFlattened) {
 }
 
 // Where drawing the box in would pierce the surface (a wineglass's thin foot, drawn in vr, whose
-// top dips towards its flat bottom: two holes), the wider cut is kept.
+// top dips towards its flat bottom: two holes, even halfway out), that side keeps the wider cut;
+// the other face the strokes draw (the mouth's rim) is drawn in on its own.
 TEST(ProxyShape, DrawingTheBoxInPiercesNoThinFoot) {
   const Made m = proxy_of("wineglass", vr_style(3));
-  EXPECT_EQ(m.report.box_drawn_in, 0);
+  EXPECT_EQ(m.report.box_drawn_in, 1);
   EXPECT_EQ(m.topology.genus, 0);
   EXPECT_EQ(m.topology.components, 1u);
+  const BoundingBox strokes = m.sketch.bounding_box();
+  BoundingBox proxy;
+  for (const auto v : m.proxy.vertices()) proxy.extend(to_eigen(m.proxy.point(v)));
+  EXPECT_LT(proxy.max.y() - strokes.max.y(), 0.003 * strokes.diagonal()) << "the mouth on its rim";
+  EXPECT_GT(strokes.min.y() - proxy.min.y(), 0.01 * strokes.diagonal()) << "the foot at the wider box";
 }
 
 // Where the close cut would pierce the foot but one halfway out does not (the wineglass drawn as a
