@@ -646,21 +646,51 @@ TriMesh finish(TriMesh mesh, const Frame& frame, Clock::time_point start, ProxyR
 // strokes draw a face: those within confine_box of the side span at least confine_box_span of the
 // box along both of its directions (a box's side, a plate's face, a cup's rim and base). Where
 // the strokes only touch a side (the top of a dome drawn by a few meridians), a cut closer to
-// them would flatten the surface they leave to the smoothing.
+// them would flatten the surface they leave to the smoothing. A face that fills only part of its
+// side (the thin end of an L-bracket's arm, a step) is drawn when flat runs of the strokes of
+// `unit` (flat_runs_span) span confine_box_span along one of the side's directions and
+// confine_box_partial along the other: a dome's meridians are not flat over the band, its
+// parallels near the top are short, and a lying cylinder's top has one flat line only.
 std::array<std::array<bool, 2>, 3> drawn_faces(const BoundingBox& strokes_box, const Eigen::MatrixX3d& points,
-                                               const ProxyOptions& options) {
+                                               const Sketch& unit, const ProxyOptions& options) {
   std::array<std::array<bool, 2>, 3> faces{};
   const Eigen::Vector3d width = strokes_box.max - strokes_box.min;
   for (int a = 0; a < 3; ++a)
     for (const bool high : {false, true}) {
       const int u = (a + 1) % 3, v = (a + 2) % 3;
+      const auto gap_of = [&](const Eigen::Vector3d& p) {
+        return high ? strokes_box.max[a] - p[a] : p[a] - strokes_box.min[a];
+      };
       BoundingBox near;
-      for (Eigen::Index i = 0; i < points.rows(); ++i) {
-        const double gap = high ? strokes_box.max[a] - points(i, a) : points(i, a) - strokes_box.min[a];
-        if (gap <= options.confine_box) near.extend(points.row(i).transpose());
-      }
+      for (Eigen::Index i = 0; i < points.rows(); ++i)
+        if (gap_of(points.row(i).transpose()) <= options.confine_box) near.extend(points.row(i).transpose());
       faces[a][high] = !near.empty() && near.max[u] - near.min[u] >= options.confine_box_span * width[u] &&
                        near.max[v] - near.min[v] >= options.confine_box_span * width[v];
+      if (faces[a][high] || !(options.confine_box_partial < options.confine_box_span)) continue;
+      // Runs of consecutive points within the band whose depth varies by at most half of it,
+      // as long as half of confine_box_span of the side's narrower direction.
+      const double run_least = 0.5 * options.confine_box_span * std::min(width[u], width[v]);
+      BoundingBox flat;
+      for (const Stroke& stroke : unit.strokes)
+        for (std::size_t i = 0; i < stroke.points.size();) {
+          if (gap_of(stroke.points[i]) > options.confine_box) {
+            ++i;
+            continue;
+          }
+          std::size_t j = i + 1;
+          double length = 0.0, lo = gap_of(stroke.points[i]), hi = lo;
+          for (; j < stroke.points.size() && gap_of(stroke.points[j]) <= options.confine_box; ++j) {
+            length += (stroke.points[j] - stroke.points[j - 1]).norm();
+            lo = std::min(lo, gap_of(stroke.points[j]));
+            hi = std::max(hi, gap_of(stroke.points[j]));
+          }
+          if (length >= run_least && hi - lo <= 0.5 * options.confine_box)
+            for (std::size_t q = i; q < j; ++q) flat.extend(stroke.points[q]);
+          i = j;
+        }
+      if (flat.empty()) continue;
+      const double su = (flat.max[u] - flat.min[u]) / width[u], sv = (flat.max[v] - flat.min[v]) / width[v];
+      faces[a][high] = std::max(su, sv) >= options.confine_box_span && std::min(su, sv) >= options.confine_box_partial;
     }
   return faces;
 }
@@ -792,6 +822,8 @@ bool ProxyOptions::valid(std::string* why) const {
     return fail("proxy confine_box_tight must be in [0, confine_box]");
   if (!(confine_box_span >= 0.0 && confine_box_span <= 1.0))
     return fail("proxy confine_box_span must be in [0, 1]");
+  if (!(confine_box_partial >= 0.0 && confine_box_partial <= 1.0))
+    return fail("proxy confine_box_partial must be in [0, 1]");
   if (!(outline_gap >= 0.0 && outline_gap < 1.0)) return fail("proxy outline_gap must be in [0, 1)");
   if (!(outline_reach > 0.0 && outline_reach < 1.0))
     return fail("proxy outline_reach must be in (0, 1)");
@@ -1217,7 +1249,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // reaches past: such a face is cut close to its strokes instead of at the wider box. Kept when
   // it adds no handle and splits nothing; where the close cut would (a thin foot whose top dips
   // towards its flat bottom would be pierced), the face is cut halfway out instead.
-  const auto faces = drawn_faces(strokes_box, stroke_points, options);
+  const auto faces = drawn_faces(strokes_box, stroke_points, unit, options);
   int face_count = 0;
   for (const auto& axis : faces) face_count += axis[0] + axis[1];
   // Per side of the box ([axis][0: low, 1: high]), how far out of the strokes it is drawn in

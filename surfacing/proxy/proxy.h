@@ -102,6 +102,12 @@ struct ProxyOptions {
                                      ///< along both of its directions (a box's face, a cup's rim);
                                      ///< where they only touch it (the top of a dome) a closer cut
                                      ///< would flatten the surface and its patch would bulge
+  double confine_box_partial = 0.15; ///< a side is also a drawn face where flat runs of strokes
+                                     ///< (their depth in the band varying by at most half of
+                                     ///< confine_box) span confine_box_span along one of its
+                                     ///< directions and this fraction along the other: a face
+                                     ///< filling part of its side, such as the thin end of an
+                                     ///< L-bracket's arm (1 = off)
   double outline_gap = 0.04;    ///< with confine_radius > 0, no surface farther than this
                                 ///< (fraction of diagonal; 0 = off) beyond the sketch's
                                 ///< outline: at a stroke point whose nearby

@@ -413,6 +413,31 @@ TEST(ProxyShape, BlobsReachingPastTheirStrokesAreNotFlattened) {
   EXPECT_GT(farthest_past_strokes_box(m), 0.011 * m.sketch.bounding_box().diagonal()) << "the surface past a side";
 }
 
+// An L-bracket drawn mid-air: the thin end of each arm is a face on a side of the strokes' box,
+// but fills a fifth of it, under the span that makes a side a drawn face. Its rim and a stroke
+// across it run flat along the side: drawn in on them, the end is cut close to its strokes
+// instead of bulging out to the wider box (max 4.1-4.2% of the diagonal before).
+TEST(ProxyShape, TheThinEndsOfAnLBracketDrawnInVrAreCutOnTheirStrokes) {
+  const TriMesh& truth = testing::truth_shape("l_bracket").mesh;
+  for (unsigned draw : {1u, 2u, 3u}) {
+    SCOPED_TRACE(draw);
+    const Made m = proxy_of("l_bracket", vr_style(draw));
+    const Evaluation e = evaluate(m.proxy, truth);
+    EXPECT_LT(e.accuracy.max, 0.03);
+    EXPECT_LT(e.accuracy.p95, 0.02);
+  }
+  ProxyOptions whole_sides_only;
+  whole_sides_only.confine_box_partial = 1.0;
+  const Made m = proxy_of("l_bracket", vr_style(3), whole_sides_only);
+  EXPECT_GT(evaluate(m.proxy, truth).accuracy.max, 0.035);
+}
+
+// A sphere's top, drawn in vr by loops round it, touches its box's sides with arcs that are not
+// flat over the band: no side is drawn in, partly or whole.
+TEST(ProxyShape, ASpheresTopIsNotAPartialFace) {
+  for (unsigned draw : {1u, 2u}) EXPECT_EQ(proxy_of("sphere", vr_style(draw)).report.box_drawn_in, 0) << draw;
+}
+
 // Where drawing the box in would pierce the surface (a wineglass's thin foot, drawn in vr, whose
 // top dips towards its flat bottom: two holes, even halfway out), that side keeps the wider cut;
 // the other face the strokes draw (the mouth's rim) is drawn in on its own.
