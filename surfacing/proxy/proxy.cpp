@@ -642,13 +642,31 @@ TriMesh finish(TriMesh mesh, const Frame& frame, Clock::time_point start, ProxyR
   return mesh;
 }
 
+// The runs of `points[begin, end)` (one stroke's, in order) whose points all satisfy `inside`:
+// visit(i, j, length) for each longest run [i, j), length its polyline length. A face drawn by
+// strokes is one they run along, where a curved surface's strokes only cross it.
+template <typename Point, typename Inside, typename Visit>
+void for_each_run(std::size_t begin, std::size_t end, Point&& point, Inside&& inside, Visit&& visit) {
+  for (std::size_t i = begin; i < end;) {
+    if (!inside(i)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    double length = 0.0;
+    for (; j < end && inside(j); ++j) length += (point(j) - point(j - 1)).norm();
+    visit(i, j, length);
+    i = j;
+  }
+}
+
 // The sides of the strokes' box (`strokes_box`, of `points`; [axis][0: low, 1: high]) where the
 // strokes draw a face: those within confine_box of the side span at least confine_box_span of the
 // box along both of its directions (a box's side, a plate's face, a cup's rim and base). Where
 // the strokes only touch a side (the top of a dome drawn by a few meridians), a cut closer to
 // them would flatten the surface they leave to the smoothing. A face that fills only part of its
 // side (the thin end of an L-bracket's arm, a step) is drawn when flat runs of the strokes of
-// `unit` (flat_runs_span) span confine_box_span along one of the side's directions and
+// `unit` (their depth varying by at most half the band) span confine_box_span along one of the side's directions and
 // confine_box_partial along the other: a dome's meridians are not flat over the band, its
 // parallels near the top are short, and a lying cylinder's top has one flat line only.
 std::array<std::array<bool, 2>, 3> drawn_faces(const BoundingBox& strokes_box, const Eigen::MatrixX3d& points,
@@ -671,23 +689,20 @@ std::array<std::array<bool, 2>, 3> drawn_faces(const BoundingBox& strokes_box, c
       // as long as half of confine_box_span of the side's narrower direction.
       const double run_least = 0.5 * options.confine_box_span * std::min(width[u], width[v]);
       BoundingBox flat;
-      for (const Stroke& stroke : unit.strokes)
-        for (std::size_t i = 0; i < stroke.points.size();) {
-          if (gap_of(stroke.points[i]) > options.confine_box) {
-            ++i;
-            continue;
+      for (const Stroke& stroke : unit.strokes) {
+        const auto point = [&](std::size_t i) -> const Eigen::Vector3d& { return stroke.points[i]; };
+        const auto inside = [&](std::size_t i) { return gap_of(stroke.points[i]) <= options.confine_box; };
+        for_each_run(0, stroke.points.size(), point, inside, [&](std::size_t i, std::size_t j, double length) {
+          if (length < run_least) return;
+          double lo = gap_of(stroke.points[i]), hi = lo;
+          for (std::size_t q = i + 1; q < j; ++q) {
+            lo = std::min(lo, gap_of(stroke.points[q]));
+            hi = std::max(hi, gap_of(stroke.points[q]));
           }
-          std::size_t j = i + 1;
-          double length = 0.0, lo = gap_of(stroke.points[i]), hi = lo;
-          for (; j < stroke.points.size() && gap_of(stroke.points[j]) <= options.confine_box; ++j) {
-            length += (stroke.points[j] - stroke.points[j - 1]).norm();
-            lo = std::min(lo, gap_of(stroke.points[j]));
-            hi = std::max(hi, gap_of(stroke.points[j]));
-          }
-          if (length >= run_least && hi - lo <= 0.5 * options.confine_box)
+          if (hi - lo <= 0.5 * options.confine_box)
             for (std::size_t q = i; q < j; ++q) flat.extend(stroke.points[q]);
-          i = j;
-        }
+        });
+      }
       if (flat.empty()) continue;
       const double su = (flat.max[u] - flat.min[u]) / width[u], sv = (flat.max[v] - flat.min[v]) / width[v];
       faces[a][high] = std::max(su, sv) >= options.confine_box_span && std::min(su, sv) >= options.confine_box_partial;
@@ -751,22 +766,13 @@ std::vector<Plane> drawn_planes(const Sketch& unit, const ProxyOptions& options)
     // The runs of consecutive stroke points within the band, the long ones kept.
     const double run_least = 0.5 * options.confine_box_span * extent(points * first);
     std::vector<Eigen::Index> kept;
+    const auto row = [&](std::size_t i) { return points.row(static_cast<Eigen::Index>(i)); };
+    const auto inside = [&](std::size_t i) { return in[i] != 0; };
     for (std::size_t s = 0; s + 1 < starts.size(); ++s)
-      for (std::size_t i = starts[s]; i < starts[s + 1];) {
-        if (!in[i]) {
-          ++i;
-          continue;
-        }
-        std::size_t j = i + 1;
-        double length = 0.0;
-        for (; j < starts[s + 1] && in[j]; ++j) {
-          const auto row = static_cast<Eigen::Index>(j);
-          length += (points.row(row) - points.row(row - 1)).norm();
-        }
+      for_each_run(starts[s], starts[s + 1], row, inside, [&](std::size_t i, std::size_t j, double length) {
         if (length >= run_least)
           for (std::size_t q = i; q < j; ++q) kept.push_back(static_cast<Eigen::Index>(q));
-        i = j;
-      }
+      });
     if (kept.size() < 3) continue;
     const Eigen::MatrixX3d runs = points(kept, Eigen::all);
     const auto spans = [&](const Eigen::Vector3d& e) {
