@@ -4,11 +4,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include "surfacing/error.h"
+#include "surfacing/flat_key_map.h"
 
 namespace sketchsurf {
 
@@ -79,14 +78,14 @@ class Polygonizer {
     for (Key cell : cells)
       for (int c = 0; c < 8; ++c) {
         const Key v = grid_.corner(cell, c);
-        if (!values_.count(v)) needed.push_back(v);
+        if (!values_.contains(v)) needed.push_back(v);
       }
     std::sort(needed.begin(), needed.end());
     needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
     std::vector<Key> inner;
     for (Key v : needed) {
       if (grid_.on_border(v))
-        values_[v] = grid_.h;  // border: forced outside, so every surface is closed
+        values_.set(v, grid_.h);  // border: forced outside, so every surface is closed
       else
         inner.push_back(v);
     }
@@ -97,21 +96,15 @@ class Polygonizer {
     Eigen::VectorXd values;
     field_(points, values);
     evaluations += inner.size();
-    for (std::size_t i = 0; i < inner.size(); ++i) values_[inner[i]] = sign_ * values[i];
+    for (std::size_t i = 0; i < inner.size(); ++i) values_.set(inner[i], sign_ * values[i]);
   }
 
   void set_outside_sign(double sign) { sign_ = sign; }
-  bool inside(Key v) const { return values_.at(v) < 0.0; }
-
-  bool crossed(Key cell) const {
-    int in = 0;
-    for (int c = 0; c < 8; ++c) in += inside(grid_.corner(cell, c));
-    return in > 0 && in < 8;
-  }
 
   // Grows the band from `frontier` through crossed faces; returns the crossed cells, sorted.
   std::vector<Key> grow(std::vector<Key> frontier, const Progress& progress) {
-    std::unordered_set<Key> visited(frontier.begin(), frontier.end());
+    FlatKeyMap<char> visited(frontier.size());
+    for (Key cell : frontier) visited.try_emplace(cell, 1);
     std::vector<Key> active;
     bool first = true;
     while (!frontier.empty()) {
@@ -119,20 +112,20 @@ class Polygonizer {
       evaluate(frontier);
       std::vector<Key> next;
       for (Key cell : frontier) {
-        const auto ijk = grid_.index(cell);
-        const bool hit = crossed(cell);
+        const Corners k = corners(cell);
+        const bool hit = k.inside_count > 0 && k.inside_count < 8;
         if (hit) active.push_back(cell);
         for (const Face& face : kFaces) {
-          auto n = ijk;
+          auto n = k.ijk;
           n[face.axis] += face.step;
           if (n[face.axis] < 0 || n[face.axis] >= grid_.cells[face.axis]) continue;
           int in = 0;
-          for (int c : face.corners) in += inside(grid_.corner(cell, c));
+          for (int c : face.corners) in += k.inside[c];
           // A seed cell the surface misses (it may bulge in and out of one face between
           // corners) still looks at its neighbours once.
           const bool through = hit ? (in > 0 && in < 4) : first;
           const Key nk = grid_.key(n[0], n[1], n[2]);
-          if (through && visited.insert(nk).second) next.push_back(nk);
+          if (through && visited.try_emplace(nk, 1).second) next.push_back(nk);
         }
       }
       first = false;
@@ -145,30 +138,30 @@ class Polygonizer {
 
   // Marching tetrahedra over the crossed cells.
   TriangleArrays triangulate(const std::vector<Key>& active) {
-    for (Key cell : active)
+    for (Key cell : active) {
+      const Corners k = corners(cell);
       for (const auto& tet : kTets) {
-        std::array<Key, 4> v;
-        for (int i = 0; i < 4; ++i) v[i] = grid_.corner(cell, tet[i]);
         std::array<int, 4> in{}, out{};
         int ni = 0, no = 0;
-        for (int i = 0; i < 4; ++i) (inside(v[i]) ? in[ni++] : out[no++]) = i;
+        for (int i = 0; i < 4; ++i) (k.inside[tet[i]] ? in[ni++] : out[no++]) = tet[i];
         if (ni == 0 || no == 0) continue;
         Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
-        for (int i = 0; i < ni; ++i) from += grid_.position(v[in[i]]) / ni;
-        for (int i = 0; i < no; ++i) to += grid_.position(v[out[i]]) / no;
+        for (int i = 0; i < ni; ++i) from += k.position[in[i]] / ni;
+        for (int i = 0; i < no; ++i) to += k.position[out[i]] / no;
         const Eigen::Vector3d outward = to - from;
-        auto edge = [&](int a, int b) { return std::array<Key, 2>{v[a], v[b]}; };
+        auto edge = [](int a, int b) { return std::array<int, 2>{a, b}; };
         if (ni == 1 || no == 1) {
           const int apex = ni == 1 ? in[0] : out[0];
           const auto& others = ni == 1 ? out : in;
-          triangle({edge(apex, others[0]), edge(apex, others[1]), edge(apex, others[2])}, outward);
+          triangle(k, {edge(apex, others[0]), edge(apex, others[1]), edge(apex, others[2])}, outward);
         } else {
           const auto ik = edge(in[0], out[0]), il = edge(in[0], out[1]);
           const auto jl = edge(in[1], out[1]), jk = edge(in[1], out[0]);
-          triangle({ik, il, jl}, outward);
-          triangle({ik, jl, jk}, outward);
+          triangle(k, {ik, il, jl}, outward);
+          triangle(k, {ik, jl, jk}, outward);
         }
       }
+    }
     TriangleArrays out;
     out.V.resize(static_cast<Eigen::Index>(positions_.size()), 3);
     for (std::size_t i = 0; i < positions_.size(); ++i)
@@ -182,47 +175,66 @@ class Polygonizer {
   std::size_t evaluations = 0;
 
  private:
-  // The mesh vertex on the grid edge (a, b), created once by linear interpolation.
-  int edge_vertex(std::array<Key, 2> e) {
-    if (e[0] > e[1]) std::swap(e[0], e[1]);
-    auto [it, fresh] = edge_vertices_.try_emplace(EdgeKey{e[0], e[1]}, 0);
-    if (fresh) {
-      const double wa = values_.at(e[0]), wb = values_.at(e[1]);
-      const double t = std::clamp(wa / (wa - wb), 0.0, 1.0);
-      const Eigen::Vector3d pa = grid_.position(e[0]), pb = grid_.position(e[1]);
-      it->second = static_cast<int>(positions_.size());
-      positions_.push_back(pa + t * (pb - pa));
+  // A cell's corners (bit 0 = +x, bit 1 = +y, bit 2 = +z), looked up once for all its tests.
+  struct Corners {
+    std::array<std::int64_t, 3> ijk;
+    std::array<Key, 8> key;
+    std::array<double, 8> value;
+    std::array<char, 8> inside;
+    std::array<Eigen::Vector3d, 8> position;
+    int inside_count = 0;
+  };
+
+  Corners corners(Key cell) const {
+    Corners k;
+    k.ijk = grid_.index(cell);
+    for (int c = 0; c < 8; ++c) {
+      const std::int64_t i = k.ijk[0] + (c & 1), j = k.ijk[1] + ((c >> 1) & 1), l = k.ijk[2] + ((c >> 2) & 1);
+      k.key[c] = grid_.key(i, j, l);
+      k.value[c] = *values_.find(k.key[c]);
+      k.inside[c] = k.value[c] < 0.0;
+      k.inside_count += k.inside[c];
+      k.position[c] = grid_.origin + grid_.h * Eigen::Vector3d(static_cast<double>(i), static_cast<double>(j),
+                                                               static_cast<double>(l));
     }
-    return it->second;
+    return k;
   }
 
-  // Adds a triangle on three grid edges, oriented so that its normal (computed on the edges'
+  // The mesh vertex on the edge between corners a and b of a cell (one a subset of the other's
+  // axes: the edges of Kuhn tetrahedra), created once by linear interpolation. The edge is keyed
+  // by its lower end's grid key and the axes it steps along.
+  int edge_vertex(const Corners& k, std::array<int, 2> e) {
+    if (e[0] > e[1]) std::swap(e[0], e[1]);
+    const Key edge_key = k.key[e[0]] * 8 + static_cast<Key>(e[1] & ~e[0]);
+    auto [index, fresh] = edge_vertices_.try_emplace(edge_key, 0);
+    if (fresh) {
+      const double wa = k.value[e[0]], wb = k.value[e[1]];
+      const double t = std::clamp(wa / (wa - wb), 0.0, 1.0);
+      const Eigen::Vector3d& pa = k.position[e[0]];
+      const Eigen::Vector3d& pb = k.position[e[1]];
+      *index = static_cast<int>(positions_.size());
+      positions_.push_back(pa + t * (pb - pa));
+    }
+    return *index;
+  }
+
+  // Adds a triangle on three edges of a cell, oriented so that its normal (computed on the edges'
   // midpoints, which are exact and never degenerate) points along `outward`.
-  void triangle(const std::array<std::array<Key, 2>, 3>& edges, const Eigen::Vector3d& outward) {
+  void triangle(const Corners& k, const std::array<std::array<int, 2>, 3>& edges,
+                const Eigen::Vector3d& outward) {
     std::array<Eigen::Vector3d, 3> mid;
-    for (int i = 0; i < 3; ++i)
-      mid[i] = 0.5 * (grid_.position(edges[i][0]) + grid_.position(edges[i][1]));
+    for (int i = 0; i < 3; ++i) mid[i] = 0.5 * (k.position[edges[i][0]] + k.position[edges[i][1]]);
     const bool flip = (mid[1] - mid[0]).cross(mid[2] - mid[0]).dot(outward) < 0.0;
-    std::array<int, 3> f{edge_vertex(edges[0]), edge_vertex(edges[1]), edge_vertex(edges[2])};
+    std::array<int, 3> f{edge_vertex(k, edges[0]), edge_vertex(k, edges[1]), edge_vertex(k, edges[2])};
     if (flip) std::swap(f[1], f[2]);
     faces_.push_back(f);
   }
 
-  struct EdgeKey {
-    Key a, b;
-    bool operator==(const EdgeKey& o) const { return a == o.a && b == o.b; }
-  };
-  struct EdgeHash {
-    std::size_t operator()(const EdgeKey& e) const {
-      return std::hash<Key>()(e.a * 0x9E3779B97F4A7C15ull ^ e.b);
-    }
-  };
-
   const FieldBatch& field_;
   const Grid& grid_;
   double sign_ = 1.0;
-  std::unordered_map<Key, double> values_;
-  std::unordered_map<EdgeKey, int, EdgeHash> edge_vertices_;
+  FlatKeyMap<double> values_;
+  FlatKeyMap<int> edge_vertices_;
   std::vector<Eigen::Vector3d> positions_;
   std::vector<std::array<int, 3>> faces_;
 };

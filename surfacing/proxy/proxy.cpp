@@ -12,11 +12,11 @@
 #include <numeric>
 #include <optional>
 #include <sstream>
-#include <unordered_map>
 #include <vector>
 
 #include "surfacing/closest_face.h"
 #include "surfacing/error.h"
+#include "surfacing/flat_key_map.h"
 #include "surfacing/parallel.h"
 #include "surfacing/portable_math.h"
 #include "surfacing/proxy/attract.h"
@@ -334,9 +334,9 @@ class GridMemo {
     for (std::size_t i = 0; i < rows; ++i) {
       if (wanted && !(*wanted)[i]) continue;
       keys[i] = key(p.row(static_cast<Eigen::Index>(i)).transpose());
-      const auto it = known_.find(keys[i]);
-      if (keys[i] != kOffGrid && it != known_.end())
-        out[static_cast<Eigen::Index>(i)] = it->second;
+      const double* known = keys[i] != kOffGrid ? known_.find(keys[i]) : nullptr;
+      if (known)
+        out[static_cast<Eigen::Index>(i)] = *known;
       else
         unknown.push_back(i);
     }
@@ -348,11 +348,11 @@ class GridMemo {
       }
     });
     for (const std::size_t i : unknown)
-      if (keys[i] != kOffGrid) known_.emplace(keys[i], out[static_cast<Eigen::Index>(i)]);
+      if (keys[i] != kOffGrid) known_.try_emplace(keys[i], out[static_cast<Eigen::Index>(i)]);
   }
 
  private:
-  static constexpr std::uint64_t kOffGrid = ~std::uint64_t{0};
+  static constexpr std::uint64_t kOffGrid = FlatKeyMap<double>::kEmpty;
 
   // The vertex's index triple packed in 21 bits each; kOffGrid for a point off the vertices.
   std::uint64_t key(const Eigen::Vector3d& p) const {
@@ -367,7 +367,7 @@ class GridMemo {
 
   Eigen::Vector3d origin_;
   double h_;
-  std::unordered_map<std::uint64_t, double> known_;
+  FlatKeyMap<double> known_;
 };
 
 // The solve's unit normals at its samples `at`, signed to point outside (where s f > 0, `scale` s):
