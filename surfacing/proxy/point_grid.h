@@ -18,8 +18,8 @@ namespace sketchsurf {
 // vertex index, as a brute-force scan would give.
 class PointGrid {
  public:
-  /// Keeps a reference to V (#n x 3, n >= 1): it must outlive the grid.
-  explicit PointGrid(const Eigen::MatrixX3d& V) : V_(V) {
+  /// Copies V (#n x 3, n >= 1) in cell order.
+  explicit PointGrid(const Eigen::MatrixX3d& V) {
     lo_ = V.colwise().minCoeff().transpose();
     const Eigen::Vector3d extent = (V.colwise().maxCoeff().transpose() - lo_).cwiseMax(1e-12);
     // A few vertices per occupied cell on a surface of area ~ extent^2 (spacing extent / sqrt(n)).
@@ -34,6 +34,8 @@ class PointGrid {
     vertices_.resize(cell_of.size());
     std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < cell_of.size(); ++i) vertices_[fill[cell_of[i]]++] = static_cast<int>(i);
+    points_.resize(vertices_.size());
+    for (std::size_t k = 0; k < vertices_.size(); ++k) points_[k] = V.row(vertices_[k]).transpose();
   }
 
   /// (index, squared distance) of the point nearest to p; with a finite `limit`, the search may
@@ -51,7 +53,7 @@ class PointGrid {
       const std::size_t end = start_[index({x1, y, z}) + 1];
       for (std::size_t k = start_[index({x0, y, z})]; k < end; ++k) {
         const int v = vertices_[k];
-        const double d2 = (V_.row(v).transpose() - p).squaredNorm();
+        const double d2 = squared_distance(points_[k], p);
         if (d2 < best.second || (d2 == best.second && v < best.first)) best = {v, d2};
       }
     };
@@ -98,7 +100,7 @@ class PointGrid {
       for (int y = lo[1]; y <= hi[1]; ++y) {
         const std::size_t end = start_[index({hi[0], y, z}) + 1];
         for (std::size_t k = start_[index({lo[0], y, z})]; k < end; ++k)
-          if ((V_.row(vertices_[k]).transpose() - p).squaredNorm() <= r2) return true;
+          if (squared_distance(points_[k], p) <= r2) return true;
       }
     return false;
   }
@@ -113,13 +115,20 @@ class PointGrid {
         const std::size_t end = start_[index({hi[0], y, z}) + 1];
         for (std::size_t k = start_[index({lo[0], y, z})]; k < end; ++k) {
           const int v = vertices_[k];
-          const double d2 = (V_.row(v).transpose() - p).squaredNorm();
+          const double d2 = squared_distance(points_[k], p);
           if (d2 <= radius * radius) fn(v, d2);
         }
       }
   }
 
  private:
+  // |q - p|^2 summed as x^2 + (y^2 + z^2), the order of Eigen's squaredNorm() on a matrix row:
+  // the same bits as the distances the callers compute from the rows they gave.
+  static double squared_distance(const Eigen::Vector3d& q, const Eigen::Vector3d& p) {
+    const double x = q[0] - p[0], y = q[1] - p[1], z = q[2] - p[2];
+    return x * x + (y * y + z * z);
+  }
+
   std::array<int, 3> coords(const Eigen::RowVector3d& p) const {
     std::array<int, 3> c{};
     for (int k = 0; k < 3; ++k)
@@ -130,12 +139,12 @@ class PointGrid {
     return (static_cast<std::size_t>(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0];
   }
 
-  const Eigen::MatrixX3d& V_;
   Eigen::Vector3d lo_;
   double cell_ = 1.0;
   std::array<int, 3> dims_{1, 1, 1};
   std::vector<std::size_t> start_;
-  std::vector<int> vertices_;
+  std::vector<int> vertices_;           // point indices, grouped by cell
+  std::vector<Eigen::Vector3d> points_;  // their positions, in the same order: scans read memory in order
 };
 
 }  // namespace sketchsurf
