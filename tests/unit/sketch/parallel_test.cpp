@@ -81,6 +81,26 @@ TEST(ParallelLoops, WorkerTeamRunsParallelForChunksLoopAfterLoop) {
   }
 }
 
+TEST(ParallelLoops, WorkerTeamLoopsBackToBackAndAfterPauses) {
+  // Loops that follow each other at once (the workers still polling), loops after a pause (the
+  // workers asleep), and loops with fewer indices than threads, on more threads than cores: each
+  // index once per loop, every loop.
+  for (unsigned threads : {2u, 3u, 5u}) {
+    const WorkerTeam team(threads);
+    std::vector<int> hits(7, 0);
+    int loops = 0;
+    for (int k = 0; k < 3000; ++k) {
+      const std::size_t n = 1 + static_cast<std::size_t>(k) % hits.size();
+      team.for_each(0, n, [&](std::size_t i) { ++hits[i]; });
+      for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(hits[i], 1) << threads << " threads, loop " << k;
+      std::fill(hits.begin(), hits.end(), 0);
+      ++loops;
+      if (k % 500 == 0) std::this_thread::sleep_for(5ms);
+    }
+    EXPECT_EQ(loops, 3000);
+  }
+}
+
 TEST(ParallelLoops, RethrowTheFirstFailureNotTheRunsItCancelled) {
   // The failing call is on the second thread's share in both loops: the calling thread's own
   // (later) "cancelled" must not hide it.
