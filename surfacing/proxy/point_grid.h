@@ -89,6 +89,22 @@ class PointGrid {
     return best;
   }
 
+  /// Whether nearest(p, limit) finds a point (index >= 0): whether any point lies in the block of
+  /// cells that search scans before it gives up, the rings round p's cell out to the first one
+  /// farther than `limit`. Every point within `limit` of p is in that block, and some a little
+  /// farther. Answered from the cells' counts alone, without looking at a point.
+  bool finds_within(const Eigen::Vector3d& p, double limit) const {
+    const std::array<int, 3> c = coords(p.transpose());
+    const int rings = std::max({dims_[0], dims_[1], dims_[2]});
+    int reach = 0;
+    while (reach < rings && !(limit < reach * cell_)) ++reach;
+    const int x0 = std::max(c[0] - reach, 0), x1 = std::min(c[0] + reach, dims_[0] - 1);
+    for (int z = std::max(c[2] - reach, 0); z <= std::min(c[2] + reach, dims_[2] - 1); ++z)
+      for (int y = std::max(c[1] - reach, 0); y <= std::min(c[1] + reach, dims_[1] - 1); ++y)
+        if (start_[index({x1, y, z}) + 1] > start_[index({x0, y, z})]) return true;
+    return false;
+  }
+
   /// Whether some point lies within `radius` of p: the answer of nearest(p, radius).second <=
   /// radius^2, found without looking for the nearest one (the first point near enough ends it).
   bool any_within(const Eigen::Vector3d& p, double radius) const {

@@ -53,7 +53,7 @@ class SearchGrid {
       const int k = static_cast<int>(kk);
       for (int j = 0; j < n_[1]; ++j)
         for (int i = 0; i < n_[0]; ++i)
-          if (strokes.nearest(point(i, j, k), search.near).first >= 0)
+          if (strokes.finds_within(point(i, j, k), search.near))
             slices[kk].push_back(id(i, j, k));
     });
     std::vector<std::size_t> near_ids;

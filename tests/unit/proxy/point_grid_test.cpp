@@ -48,9 +48,14 @@ TEST(PointGrid, NearestIsTheBruteForceNearestWithTiesToTheLowerIndex) {
       EXPECT_GT(std::sqrt(limited.second), limit) << "query " << q;
     }
     // Some point within a radius, whatever the radius against the cells (smaller, about one, many).
-    for (const double radius : {0.01, 0.05, 0.2, 1.5})
+    for (const double radius : {0.01, 0.05, 0.2, 1.5}) {
       EXPECT_EQ(grid.any_within(p, radius), expected.second <= radius * radius)
           << "query " << q << " radius " << radius;
+      // finds_within: what the limited search says, and true for every point within the radius.
+      const bool finds = grid.finds_within(p, radius);
+      EXPECT_EQ(finds, grid.nearest(p, radius).first >= 0) << "query " << q << " radius " << radius;
+      if (expected.second <= radius * radius) EXPECT_TRUE(finds) << "query " << q << " radius " << radius;
+    }
   }
 
   // A query exactly on a duplicated point: the lower index, at distance 0.
