@@ -334,7 +334,11 @@ Sketch Surfacer::prepare(const Sketch& input, bool refuse_scribbles, SurfaceRepo
     report.openings = find_openings(sketch, params_.prepare.openings);
     for (const Opening& o : report.openings) sketch.strokes[o.stroke].boundary = true;
   }
-  if (!sketch.mirror && !report.symmetry) report.symmetry = detect_mirror(sketch, params_.prepare.mirror_detection);
+  if (!sketch.mirror && !report.symmetry) {
+    MirrorDetectOptions mirror = params_.prepare.mirror_detection;
+    if (mirror.threads == 0) mirror.threads = params_.proxy.threads;
+    report.symmetry = detect_mirror(sketch, mirror);
+  }
   report.strokes = sketch.strokes.size();
   report.points = sketch.point_count();
   report.prepare_s = seconds_since(t);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "surfacing/closest_face.h"
+#include "surfacing/parallel.h"
 #include "surfacing/portable_math.h"
 #include "surfacing/sketch/stroke_point_grid.h"
 #include "surfacing/sketch/stroke_segments.h"
@@ -21,13 +22,20 @@ struct Score {
   double balance = 0.0;   // smaller share of points on one side
 };
 
-Score score(const Plane& plane, const std::vector<V3>& points, const ClosestFaceTree& tree) {
+// The stroke point nearest to each point's reflection, on `threads` threads.
+std::vector<V3> mirror_partners(const Plane& plane, const std::vector<V3>& points, const ClosestFaceTree& tree,
+                                unsigned threads) {
+  std::vector<V3> out(points.size());
+  parallel_for(0, points.size(), threads, [&](std::size_t i) { tree.closest_face(plane.reflect(points[i]), &out[i]); });
+  return out;
+}
+
+Score score(const Plane& plane, const std::vector<V3>& points, const ClosestFaceTree& tree, unsigned threads) {
+  const std::vector<V3> partners = mirror_partners(plane, points, tree, threads);
   std::vector<double> d(points.size());
   std::size_t positive = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    V3 q;
-    tree.closest_face(plane.reflect(points[i]), &q);
-    d[i] = (q - plane.reflect(points[i])).norm();
+    d[i] = (partners[i] - plane.reflect(points[i])).norm();
     positive += plane.signed_distance(points[i]) > 0.0;
   }
   const std::size_t k = (d.size() * 9) / 10;
@@ -39,11 +47,12 @@ Score score(const Plane& plane, const std::vector<V3>& points, const ClosestFace
 // One refinement: each point paired with the stroke point nearest to its reflection; the new
 // normal is the mean of the pairs' differences (oriented along the old normal), the new plane
 // passes through the mean of their midpoints.
-Plane refine(const Plane& plane, const std::vector<V3>& points, const ClosestFaceTree& tree) {
+Plane refine(const Plane& plane, const std::vector<V3>& points, const ClosestFaceTree& tree, unsigned threads) {
+  const std::vector<V3> partners = mirror_partners(plane, points, tree, threads);
   V3 direction = V3::Zero(), middle = V3::Zero();
-  for (const V3& p : points) {
-    V3 m;
-    tree.closest_face(plane.reflect(p), &m);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const V3& p = points[i];
+    const V3& m = partners[i];
     V3 d = p - m;
     if (d.dot(plane.normal) < 0.0) d = -d;
     direction += d;
@@ -94,8 +103,8 @@ std::optional<DetectedMirror> detect_mirror(const Sketch& sketch, const MirrorDe
     Plane plane;
     plane.normal = n.normalized();
     plane.offset = -plane.normal.dot(centroid);
-    for (int i = 0; i < options.iterations; ++i) plane = refine(plane, points, tree);
-    const Score s = score(plane, points, tree);
+    for (int i = 0; i < options.iterations; ++i) plane = refine(plane, points, tree, options.threads);
+    const Score s = score(plane, points, tree, options.threads);
     if (s.distance > options.tolerance * diagonal || s.balance < options.balance) continue;
     if (!best || s.distance < best->distance * diagonal) best = DetectedMirror{plane, s.distance / diagonal};
   }

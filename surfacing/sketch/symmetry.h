@@ -23,6 +23,7 @@ struct MirrorDetectOptions {
                             ///< normal (it runs on across the plane in the mirror image)...
   double free_end = 0.02;   ///< ...and no other stroke within this of its end (a box's edges end
                             ///< on each other at its corners; half an object's sections end in the air)
+  unsigned threads = 0;     ///< for the closest-point queries (0 = all); the result does not depend on it
   bool valid(std::string* why) const;
 };
 
