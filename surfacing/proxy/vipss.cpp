@@ -86,46 +86,9 @@ void lower_solve_columns(const Mat& L, Mat& X, unsigned threads) {
   });
 }
 
-// x <- L^-1 x for the factor in the lower triangle of L: Eigen's forward substitution (panels of
-// kPanel columns; each panel solved, then its product with every row below it subtracted by
-// Eigen's matrix-vector kernel), with the rows below each kTile-row block updated by that block's
-// panels only once the block is solved, on the team, by row tiles. Every element sees the same
-// operations in the same order as in Eigen's solve, so the same bits whatever the team; only the
-// rows' grouping into kernel calls differs, and the kernel computes each row alone.
-void lower_solve(const Mat& L, Vec& x, const WorkerTeam& team) {
-  using Mapper = Eigen::internal::const_blas_data_mapper<double, Index, Eigen::ColMajor>;
-  using Product =
-      Eigen::internal::general_matrix_vector_product<Index, double, Mapper, Eigen::ColMajor, false, double, Mapper, false>;
-  constexpr Index kPanel = EIGEN_TUNE_TRIANGULAR_PANEL_WIDTH;
-  static_assert(kTile % kPanel == 0);
-  const Index n = L.rows();
-  // x[r0, r0 + rows) -= L[r0.., p0, p0 + width) x[p0, p0 + width)
-  const auto subtract = [&](Index r0, Index rows, Index p0, Index width) {
-    Product::run(rows, width, Mapper(&L.coeffRef(r0, p0), L.outerStride()), Mapper(x.data() + p0, 1),
-                 x.data() + r0, 1, -1.0);
-  };
-  for (Index b0 = 0; b0 < n; b0 += kTile) {
-    const Index b1 = std::min(n, b0 + kTile);
-    for (Index p0 = b0; p0 < b1; p0 += kPanel) {
-      const Index p1 = std::min(b1, p0 + kPanel);
-      for (Index i = p0; i < p1; ++i) {
-        if (!Eigen::numext::not_equal_strict(x[i], 0.0)) continue;
-        x[i] /= L(i, i);
-        if (p1 - i - 1 > 0) x.segment(i + 1, p1 - i - 1) -= x[i] * L.col(i).segment(i + 1, p1 - i - 1);
-      }
-      if (b1 > p1) subtract(p1, b1 - p1, p0, p1 - p0);
-    }
-    if (b1 == n) break;
-    team.for_each(0, static_cast<std::size_t>(tiles(n - b1)), [&](std::size_t t) {
-      const Index r0 = b1 + static_cast<Index>(t) * kTile, rows = std::min(kTile, n - r0);
-      for (Index p0 = b0; p0 < b1; p0 += kPanel) subtract(r0, rows, p0, std::min(kPanel, b1 - p0));
-    });
-  }
-}
-
 // x <- (L L^T)^-1 x with the factor in the lower triangle of L.
-void cholesky_solve(const Mat& L, Vec& x, const WorkerTeam& team) {
-  lower_solve(L, x, team);
+void cholesky_solve(const Mat& L, Vec& x) {
+  L.triangularView<Eigen::Lower>().solveInPlace(x);
   L.triangularView<Eigen::Lower>().transpose().solveInPlace(x);
 }
 
@@ -163,15 +126,15 @@ void normals_from_angles(const double* angles, Index n, Vec& g) {
 class NormalEnergy : public detail::LbfgsFunction {
  public:
   /// `fixed` (if given, one flag a point): those points' angles keep their start (zero gradient).
-  explicit NormalEnergy(const Mat& factor, const WorkerTeam& team, const std::vector<char>* fixed = nullptr)
-      : factor_(factor), team_(team), fixed_(fixed) {}
+  explicit NormalEnergy(const Mat& factor, const std::vector<char>* fixed = nullptr)
+      : factor_(factor), fixed_(fixed) {}
   Index size() const override { return 2 * (factor_.rows() / 3); }
   bool evaluate(const double* angles, double* cost, double* gradient) const override {
     const Index n = factor_.rows() / 3;
     Vec g(3 * n);
     normals_from_angles(angles, n, g);
     Vec h = g;
-    cholesky_solve(factor_, h, team_);
+    cholesky_solve(factor_, h);
     *cost = g.dot(h);
     for (Index i = 0; i < n; ++i) {
       const double st = portable::sin(angles[2 * i]), ct = portable::cos(angles[2 * i]);
@@ -191,7 +154,6 @@ class NormalEnergy : public detail::LbfgsFunction {
 
  private:
   const Mat& factor_;
-  const WorkerTeam& team_;
   const std::vector<char>* fixed_;
 };
 
@@ -489,9 +451,8 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
     bool closed = false;  // one sign of f all over the box's faces
     std::string termination;
   };
-  const WorkerTeam solve_team(threads);  // the energy's triangular solves
   auto optimum = [&](std::vector<double> angles, std::size_t start) {
-    const NormalEnergy energy(s, solve_team, from ? &from->fixed : nullptr);
+    const NormalEnergy energy(s, from ? &from->fixed : nullptr);
     detail::LbfgsOptions lbfgs_options;
     lbfgs_options.rank = kLbfgsRank;
     lbfgs_options.max_iterations = options.max_iterations;
@@ -514,7 +475,7 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
     Vec g(3 * n);
     normals_from_angles(angles.data(), n, g);
     Vec b = g;
-    cholesky_solve(s, b, solve_team);
+    cholesky_solve(s, b);
     made.energy = g.dot(b);
     Vec r1(n);
     parallel_for(0, n, threads, [&](std::size_t ii) {
@@ -531,7 +492,7 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
     Vec rhs = r1 - pvy * cr;
     rhs.applyOnTheLeft(qr.householderQ().transpose());
     Vec w = rhs.tail(n - 4);
-    cholesky_solve(tl, w, solve_team);
+    cholesky_solve(tl, w);
     Vec zw = Vec::Zero(n);
     zw.tail(n - 4) = w;
     zw.applyOnTheLeft(qr.householderQ());
@@ -565,7 +526,7 @@ VipssResult solve_vipss(const Eigen::MatrixX3d& x, const VipssOptions& options,
   });
   {
     std::vector<double> gradient(first_start.size());
-    NormalEnergy(s, solve_team).evaluate(first_start.data(), &result.summary.initial_energy, gradient.data());
+    NormalEnergy(s).evaluate(first_start.data(), &result.summary.initial_energy, gradient.data());
   }
   Candidate best = optimum(first_start, 0);
   if (!best.closed && !from) {
