@@ -1,6 +1,8 @@
 // sketchsurf: the command-line front end. Parses, dispatches to a command, maps errors to exit
 // codes (0 ok, 2 usage, 3 invalid input, 4 processing failed, 130 cancelled).
 
+#include <malloc.h>
+
 #include <iostream>
 #include <new>
 
@@ -9,6 +11,12 @@
 
 int main(int argc, char** argv) {
   using namespace sketchsurf;
+  // A run allocates and frees the same large arrays again and again (VIPSS's matrices for each
+  // smoothing weight, each polygonisation's tables). From the heap, and kept there when freed,
+  // they cost no fresh pages each time; handed back to the system, every reuse faults its pages
+  // in anew (measured in docs/performance.md).
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
   CLI::App app{"sketchsurf: piecewise-smooth surfaces from unstructured 3D sketches"};
   app.set_version_flag("--version", std::string("sketchsurf ") + SKETCHSURF_VERSION);
   app.require_subcommand(1);
