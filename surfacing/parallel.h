@@ -72,8 +72,8 @@ void parallel_for(std::size_t begin, std::size_t end, unsigned threads, Fn&& fn)
   error.rethrow();
 }
 
-/// Worker threads kept for many loops (an extraction runs thousands, a triangular solve one a
-/// block, where parallel_for() would start and join threads at each: ~50 us of CPU apiece).
+/// Worker threads kept for many loops (an extraction runs thousands, where parallel_for() would
+/// start and join threads at each: ~50 us of CPU apiece).
 /// for_each() runs parallel_for()'s chunks, so the same results whatever the thread count; the
 /// calling thread runs chunk 0. Between loops the workers spin a little while for the next one
 /// before they sleep on a condition variable, and the caller spins a little while for them to end:
