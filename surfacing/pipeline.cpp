@@ -172,6 +172,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"segment.seed", setter([](Params& p) -> auto& { return p.segment.seed; })},
       {"segment.simplify", setter([](Params& p) -> auto& { return p.segment.simplify; })},
       {"segment.crease_guides", setter([](Params& p) -> auto& { return p.segment.association.guides.enabled; })},
+      {"segment.crease_same_way", setter([](Params& p) -> auto& { return p.segment.association.guides.same_way; })},
       {"segment.threads", setter([](Params& p) -> auto& { return p.segment.threads; })},
       {"checks.refuse_score", setter([](Params& p) -> auto& { return p.checks.refuse_score; })},
       {"checks.refuse_scribbled", setter([](Params& p) -> auto& { return p.checks.refuse_scribbled; })},

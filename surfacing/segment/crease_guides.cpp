@@ -69,6 +69,7 @@ bool CreaseGuideOptions::valid(std::string* why) const {
   if (!(min_gap >= 0 && max_gap > min_gap) || !std::isfinite(max_gap))
     return fail("crease guide gaps need 0 <= min_gap < max_gap");
   if (!(alignment > 0 && alignment < 90)) return fail("crease guide alignment must be in (0, 90) degrees");
+  if (!(same_way > 0 && same_way <= 180)) return fail("crease guide same_way must be in (0, 180] degrees");
   if (!(fold_radius > 0) || !std::isfinite(fold_radius)) return fail("crease guide fold_radius must be positive");
   if (!(min_fold >= 0 && min_fold < 90)) return fail("crease guide min_fold must be in [0, 90) degrees");
   return true;
@@ -88,7 +89,7 @@ std::vector<StrokeCorner> stroke_corners(const Sketch& sketch, double diagonal,
     const std::size_t n = line.points.size();
     // Turn over the window at every point that has a full window on both sides.
     std::vector<double> turn(n, -1.0);
-    std::vector<V3> axis(n, V3::Zero());
+    std::vector<V3> axis(n, V3::Zero()), apex(n, V3::Zero());
     for (std::size_t i = 0; i < n; ++i) {
       const double s0 = line.arc[i];
       if (!line.closed && (s0 < w || s0 > line.length() - w)) continue;
@@ -99,9 +100,11 @@ std::vector<StrokeCorner> stroke_corners(const Sketch& sketch, double diagonal,
       const double half = angle_deg(p - line.at(s0 - 0.5 * w), line.at(s0 + 0.5 * w) - p);
       if (half < options.concentration * t) continue;
       const V3 a = in.normalized().cross(out.normalized());
-      if (!(a.norm() > 0)) continue;
+      const V3 tip = in.normalized() - out.normalized();
+      if (!(a.norm() > 0) || !(tip.norm() > 0)) continue;
       turn[i] = t;
       axis[i] = a.normalized();
+      apex[i] = tip.normalized();
     }
     // Keep each point that turns most within the window on both sides (the first on a tie).
     auto arc_gap = [&](std::size_t i, std::size_t j) {
@@ -114,7 +117,7 @@ std::vector<StrokeCorner> stroke_corners(const Sketch& sketch, double diagonal,
       for (std::size_t j = 0; j < n && best; ++j)
         if (j != i && turn[j] >= 0 && arc_gap(i, j) < w)
           best = turn[j] < turn[i] || (turn[j] == turn[i] && j > i);
-      if (best) corners.push_back({line.points[i], axis[i], static_cast<int>(s)});
+      if (best) corners.push_back({line.points[i], axis[i], apex[i], static_cast<int>(s)});
     }
   }
   return corners;
@@ -128,11 +131,13 @@ std::vector<std::array<V3, 2>> crease_guides(const Sketch& sketch, double diagon
   if (!options.enabled) return guides;
   const std::vector<StrokeCorner> corners = stroke_corners(sketch, diagonal, options);
   const double cos_align = portable::cos(options.alignment * std::numbers::pi / 180.0);
+  const double cos_same = portable::cos(options.same_way * std::numbers::pi / 180.0);
   const double lo = options.min_gap * diagonal, hi = options.max_gap * diagonal;
   const std::size_t n = corners.size();
-  // nearest[2 i + side]: the closest corner along +axis (side 0) or -axis (side 1) of corner i.
-  std::vector<int> nearest(2 * n, -1);
-  std::vector<double> nearest_d(2 * n, hi);
+  // nearest[2 i + side]: the closest corner along +axis (side 0) or -axis (side 1) of corner i;
+  // same[2 i + side] the closest of those whose apex points the same way.
+  std::vector<int> nearest(2 * n, -1), same(2 * n, -1);
+  std::vector<double> nearest_d(2 * n, hi), same_d(2 * n, hi);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j) {
       if (corners[i].stroke == corners[j].stroke) continue;
@@ -146,7 +151,13 @@ std::vector<std::array<V3, 2>> crease_guides(const Sketch& sketch, double diagon
         nearest_d[slot] = d;
         nearest[slot] = static_cast<int>(j);
       }
+      if (options.same_way < 180 && corners[i].apex.dot(corners[j].apex) >= cos_same && d < same_d[slot]) {
+        same_d[slot] = d;
+        same[slot] = static_cast<int>(j);
+      }
     }
+  for (std::size_t slot = 0; slot < 2 * n; ++slot)
+    if (same[slot] >= 0) nearest[slot] = same[slot];
   for (std::size_t i = 0; i < n; ++i)
     for (int side = 0; side < 2; ++side) {
       const int j = nearest[2 * i + side];

@@ -25,6 +25,12 @@ struct CreaseGuideOptions {
   double max_gap = 0.3;        ///< longest join between two corners
   double min_gap = 0.01;       ///< corners closer than this are one corner drawn twice, not joined
   double alignment = 20.0;     ///< degrees between a join and either corner's crease direction
+  double same_way = 45.0;      ///< degrees within which two corners' apexes point the same way. A
+                               ///< crease's corners all do; a stroke round a plate's thin side
+                               ///< turns up and out at its top edge, down and out at its bottom
+                               ///< edge. A corner joins its nearest same-way candidate on a side
+                               ///< when it has one, its nearest candidate otherwise (180: nearest
+                               ///< only)
   double fold_radius = 0.04;   ///< a join is kept where the proxy's normals within this distance of
                                ///< its middle part spread this far from their mean...
   double min_fold = 10.0;      ///< ...in degrees: a crease folds the surface, a face does not (two
@@ -32,11 +38,13 @@ struct CreaseGuideOptions {
   bool valid(std::string* why) const;
 };
 
-/// A sharp turn of a stroke: where it is, and the direction of the crease it crosses (the normal
-/// of the plane of the turn, unit, sign arbitrary).
+/// A sharp turn of a stroke: where it is, the direction of the crease it crosses (the normal of
+/// the plane of the turn, unit, sign arbitrary) and the direction its tip points (the unit
+/// difference of its incoming and outgoing directions, the same whichever way the stroke runs).
 struct StrokeCorner {
   Eigen::Vector3d position;
   Eigen::Vector3d axis;
+  Eigen::Vector3d apex;
   int stroke = -1;  ///< index into the sketch's strokes
 };
 
@@ -46,7 +54,8 @@ std::vector<StrokeCorner> stroke_corners(const Sketch& sketch, double diagonal,
                                          const CreaseGuideOptions& options = {});
 
 /// Segments joining corners of different strokes that lie along each other's crease direction,
-/// each corner to its nearest such corner on either side, kept when the choice is mutual. Empty
+/// each corner to its nearest such corner on either side (nearest among those pointing the same
+/// way when there are any: options.same_way), kept when the choice is mutual. Empty
 /// when options.enabled is false. Throws Error (Usage) on invalid options.
 std::vector<std::array<Eigen::Vector3d, 2>> crease_guides(const Sketch& sketch, double diagonal,
                                                           const CreaseGuideOptions& options = {});

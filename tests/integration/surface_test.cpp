@@ -309,6 +309,19 @@ TEST(Surface, AnLBracketDrawnInVrHasFlatThinEndFaces) {
   EXPECT_LT(eval.accuracy.max, 0.05);
 }
 
+// A thin plate drawn mid-air (vr draw 2) by strokes round its thin sides: where one stroke is drawn
+// a little higher than the next, its top corner lies nearer the next one's bottom corner than that
+// one's top corner. Joined by distance alone, that crease guide runs across the thin side, whose
+// region then wraps it and rounds the plate's edges (crease error median 5.3 degrees); corners
+// join the nearest that points the same way.
+TEST(Surface, AThinPlateDrawnInVrHasSharpEdgesRoundItsThinSides) {
+  const TriMesh truth = testing::truth_shape("thin_plate").mesh;
+  const Evaluation eval = evaluate(surfaced_vr_draw(truth, 2).mesh, truth);
+  EXPECT_GT(eval.creases.found, 0.9);
+  EXPECT_LT(eval.creases.error.median, 5.0);
+  EXPECT_LT(eval.accuracy.p99, 0.02);
+}
+
 // A wineglass drawn mid-air (vr draw 3): the foot's underside is flat, and the proxy's bulge past
 // the foot's rim would be projected onto its plane as a flange round the foot. Flat regions end
 // at their drawn outline. Its thin foot keeps folds both fills leave; held at the proxy it would

@@ -77,6 +77,48 @@ TEST(CreaseGuides, SectionsTooFarApartOrTurnedAreNotJoined) {
   EXPECT_TRUE(crease_guides(sketch, 1.0).empty());
 }
 
+// A stroke round a plate's thin side at x = 0.5: along the top face (y = y0 + 0.02) to the side,
+// down it, back along the bottom face (y = y0 - 0.02), in the plane z.
+Stroke round_thin_side(double z, double y0) {
+  return polyline_stroke({V3(0.2, y0 + 0.02, z), V3(0.5, y0 + 0.02, z), V3(0.5, y0 - 0.02, z), V3(0.2, y0 - 0.02, z)},
+                         false);
+}
+
+TEST(CreaseGuides, CornersRoundAThinSideJoinTopToTopAndBottomToBottom) {
+  // The second stroke is drawn 0.03 higher: its bottom corner lies nearer the first's top corner
+  // (and within the alignment) than its own top corner does, but points the other way.
+  Sketch sketch;
+  sketch.strokes.push_back(round_thin_side(0.0, 0.0));
+  sketch.strokes.push_back(round_thin_side(0.15, 0.03));
+  const auto corners = stroke_corners(sketch, 1.0);
+  ASSERT_EQ(corners.size(), 4u);
+  for (const auto& c : corners) EXPECT_NEAR(std::abs(c.apex.y()), std::sqrt(0.5), 1e-3);
+  auto joins_top_to_top = [](const std::array<V3, 2>& g) {
+    const double y0 = g[0].z() < g[1].z() ? g[0].y() : g[1].y(), y1 = g[0].z() < g[1].z() ? g[1].y() : g[0].y();
+    return std::abs(y1 - y0 - 0.03) < 1e-3;
+  };
+  const auto guides = crease_guides(sketch, 1.0);
+  ASSERT_EQ(guides.size(), 2u);
+  for (const auto& g : guides) EXPECT_TRUE(joins_top_to_top(g));
+  // By distance alone the first stroke's top corner joins the second's bottom corner.
+  CreaseGuideOptions nearest_only;
+  nearest_only.same_way = 180;
+  const auto crossed = crease_guides(sketch, 1.0, nearest_only);
+  ASSERT_EQ(crossed.size(), 1u);
+  EXPECT_FALSE(joins_top_to_top(crossed[0]));
+}
+
+TEST(CreaseGuides, ACornerWithNoSameWayPartnerJoinsItsNearest) {
+  // Two L turns along z whose tips point 90 degrees apart: each is the other's only candidate.
+  Sketch sketch;
+  sketch.strokes.push_back(polyline_stroke({V3(0.2, 0, 0), V3(0.5, 0, 0), V3(0.5, 0.3, 0)}, false));
+  sketch.strokes.push_back(polyline_stroke({V3(0.2, 0, 0.15), V3(0.5, 0, 0.15), V3(0.5, -0.3, 0.15)}, false));
+  const auto corners = stroke_corners(sketch, 1.0);
+  ASSERT_EQ(corners.size(), 2u);
+  EXPECT_NEAR(corners[0].apex.dot(corners[1].apex), 0.0, 1e-3);
+  EXPECT_EQ(crease_guides(sketch, 1.0).size(), 1u);
+}
+
 TEST(CreaseGuides, OnlyJoinsAlongWhichTheSurfaceFoldsAreKept) {
   // A rounded box: a join along one of its edges is kept; one across a flat face (corners that
   // line up by chance), one diagonal over a narrow face reaching its rounded edges, and one
@@ -100,7 +142,8 @@ TEST(CreaseGuides, InvalidOptionsAreUsageErrors) {
   const Sketch sketch = sections({0.0});
   const std::vector<std::function<void(CreaseGuideOptions&)>> breakers{
       [](CreaseGuideOptions& o) { o.min_turn = 160; }, [](CreaseGuideOptions& o) { o.max_gap = 0.0; },
-      [](CreaseGuideOptions& o) { o.alignment = 90; }, [](CreaseGuideOptions& o) { o.min_fold = 95; }};
+      [](CreaseGuideOptions& o) { o.alignment = 90; }, [](CreaseGuideOptions& o) { o.min_fold = 95; },
+      [](CreaseGuideOptions& o) { o.same_way = 0; }, [](CreaseGuideOptions& o) { o.same_way = 181; }};
   for (const auto& breaker : breakers) {
     CreaseGuideOptions o;
     breaker(o);
