@@ -290,6 +290,12 @@ Sketch over_sketched(const Sketch& sketch, int passes, double offset, unsigned s
   return out;
 }
 
+Sketch prepared_sketch(Sketch sketch) {
+  sketch.assign_ids();
+  resample(sketch, 0.005 * sketch.bounding_box().diagonal());
+  return sketch;
+}
+
 void add_noise(Sketch& sketch, double sigma, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n(0.0, sigma);

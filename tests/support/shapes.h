@@ -68,6 +68,9 @@ Sketch hatching_sketch(int patches, unsigned seed);
 /// Ids renumbered 0, 1, ...
 Sketch over_sketched(const Sketch& sketch, int passes, double offset, unsigned seed);
 
+/// The sketch as the sketch checks see it: ids assigned, resampled every 0.5% of its diagonal.
+Sketch prepared_sketch(Sketch sketch);
+
 /// Adds independent Gaussian noise of standard deviation `sigma` to every point.
 void add_noise(Sketch& sketch, double sigma, unsigned seed);
 /// Scales by `s` then translates by `t` every point (and the mirror plane).

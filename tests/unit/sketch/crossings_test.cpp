@@ -18,11 +18,11 @@ using V3 = Eigen::Vector3d;
 
 constexpr double kReach = 0.01, kAngle = 30.0 * M_PI / 180.0;
 
-Stroke line(const V3& a, const V3& b) { return testing::polyline_stroke({a, b}, false); }
+Stroke two_point_stroke(const V3& a, const V3& b) { return testing::polyline_stroke({a, b}, false); }
 
 Sketch two_lines(const V3& a0, const V3& a1, const V3& b0, const V3& b1) {
   Sketch sketch;
-  sketch.strokes = {line(a0, a1), line(b0, b1)};
+  sketch.strokes = {two_point_stroke(a0, a1), two_point_stroke(b0, b1)};
   return sketch;
 }
 
@@ -49,7 +49,7 @@ TEST(Crossings, StrokesMeetCrosswiseWithinTheReach) {
             1.0);
   // The share counts length: a long stroke met, a short one alone.
   Sketch sketch = two_lines(V3(-1, 0, 0), V3(1, 0, 0), V3(0, -1, 0), V3(0, 1, 0));
-  sketch.strokes.push_back(line(V3(5, 5, 5), V3(5.4, 5, 5)));
+  sketch.strokes.push_back(two_point_stroke(V3(5, 5, 5), V3(5.4, 5, 5)));
   EXPECT_NEAR(unmet_share(sketch, kReach, kAngle), 0.4 / 4.4, 1e-3);
   sketch.strokes.back().ignored = true;
   EXPECT_EQ(unmet_share(sketch, kReach, kAngle), 0.0);
@@ -76,7 +76,7 @@ TEST(Crossings, TheGapWhereStrokesCrossIsTheirDistanceThere) {
   // The median over the crossing pairs: three lines lifted 0.001, 0.002 and 0.006 across a fourth.
   Sketch sketch = crossing_pair(0.001, 0.0);
   for (const auto& [x, lift] : {std::pair{0.1, 0.002}, std::pair{0.3, 0.006}})
-    sketch.strokes.push_back(line(V3(x, -1, lift), V3(x, 1, lift)));
+    sketch.strokes.push_back(two_point_stroke(V3(x, -1, lift), V3(x, 1, lift)));
   EXPECT_NEAR(crossing_gap(sketch, kReach, kAngle, 3), 0.002, 1e-12);
   sketch.strokes.back().ignored = true;
   EXPECT_LT(crossing_gap(sketch, kReach, kAngle, 3), 0.0);

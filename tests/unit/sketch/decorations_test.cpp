@@ -16,17 +16,11 @@ Stroke segment(const V3& a, const V3& b) {
   return testing::sample_curve([&](double t) { return V3(a + t * (b - a)); }, 0.0, 1.0, 0.005);
 }
 
-Sketch prepared(Sketch sketch) {
-  sketch.assign_ids();
-  resample(sketch, 0.005 * sketch.bounding_box().diagonal());
-  return sketch;
-}
-
 TEST(Decorations, CurveNetworksHaveNone) {
-  EXPECT_TRUE(find_decorations(prepared(testing::cube_sketch())).empty());
-  EXPECT_TRUE(find_decorations(prepared(testing::cylinder_sketch())).empty());
-  EXPECT_TRUE(find_decorations(prepared(testing::sphere_sketch())).empty());
-  EXPECT_TRUE(find_decorations(prepared(testing::torus_sketch())).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(testing::cube_sketch())).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(testing::cylinder_sketch())).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(testing::sphere_sketch())).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(testing::torus_sketch())).empty());
 }
 
 TEST(Decorations, ImpreciseJunctionsAreNotAntennas) {
@@ -36,13 +30,13 @@ TEST(Decorations, ImpreciseJunctionsAreNotAntennas) {
     const V3 a = s.points.front(), b = s.points.back(), d = 0.03 * (b - a).normalized();
     s = segment(a + d, b - d);
   }
-  EXPECT_TRUE(find_decorations(prepared(cube)).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(cube)).empty());
 }
 
 TEST(Decorations, AnAntennaHangingByOneEndIsFound) {
   Sketch sketch = testing::sphere_sketch(0.5, 4);
   sketch.strokes.push_back(segment(V3(0.5, 0, 0), V3(0.9, 0, 0)));
-  const Sketch s = prepared(sketch);
+  const Sketch s = testing::prepared_sketch(sketch);
   const auto found = find_decorations(s);
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(found[0].stroke, s.strokes.size() - 1);
@@ -65,7 +59,7 @@ Sketch sphere_with_cable() {
 }
 
 TEST(Decorations, ACableIsFoundWithThePlugItCarries) {
-  const Sketch s = prepared(sphere_with_cable());
+  const Sketch s = testing::prepared_sketch(sphere_with_cable());
   const auto found = find_decorations(s);
   ASSERT_EQ(found.size(), 3u);
   const std::size_t cable = s.strokes.size() - 3;
@@ -83,7 +77,7 @@ TEST(Decorations, AStrokeRunningBesideAnotherIsAThinPartsEdgeNotACable) {
   Sketch sketch = sphere_with_cable();
   sketch.strokes.push_back(testing::sample_curve(
       [](double t) { return V3(0.5 + t, -0.3 * std::sin(M_PI * t) + 0.08, 0.2 * t); }, 0.0, 0.7, 0.005));
-  EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(sketch)).empty());
 }
 
 TEST(Decorations, AStrokeCarryingALargeGroupIsNotACable) {
@@ -97,7 +91,7 @@ TEST(Decorations, AStrokeCarryingALargeGroupIsNotACable) {
     for (V3& p : stroke.points) p += V3(1.75, 0.0, 0.2);
     sketch.strokes.push_back(stroke);
   }
-  EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(sketch)).empty());
 }
 
 TEST(Decorations, ADotApartIsFoundAndAClosedOutlineOnAFaceIsNot) {
@@ -106,7 +100,7 @@ TEST(Decorations, ADotApartIsFoundAndAClosedOutlineOnAFaceIsNot) {
   // A circle drawn on the top face, touching no other stroke.
   sketch.strokes.push_back(testing::sample_curve(
       [](double t) { return V3(0.25 + 0.1 * std::cos(t), 0.5, -0.25 + 0.1 * std::sin(t)); }, 0, 2 * M_PI, 0.005));
-  const Sketch s = prepared(sketch);
+  const Sketch s = testing::prepared_sketch(sketch);
   const auto found = find_decorations(s);
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(found[0].stroke, s.strokes.size() - 2);
@@ -119,7 +113,7 @@ TEST(Decorations, ADotTouchingTheObjectIsFoundAndAShortStrokeIsNot) {
   Sketch sketch = testing::cube_sketch();
   sketch.strokes.push_back(segment(V3(0.0, 0.5, 0.5), V3(0.0, 0.49, 0.49)));  // 0.014: a dot
   sketch.strokes.push_back(segment(V3(0.2, 0.5, 0.5), V3(0.2, 0.5, 0.47)));   // 0.03: a tick
-  const Sketch s = prepared(sketch);
+  const Sketch s = testing::prepared_sketch(sketch);
   const auto found = find_decorations(s);
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(found[0].stroke, s.strokes.size() - 2);
@@ -133,14 +127,14 @@ TEST(Decorations, StrokesTheUserMarkedAreLeftAlone) {
   Sketch sketch = testing::sphere_sketch(0.5, 4);
   sketch.strokes.push_back(segment(V3(0.5, 0, 0), V3(0.9, 0, 0)));
   sketch.strokes.back().boundary = true;
-  EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(sketch)).empty());
   sketch.strokes.back().boundary = false;
   sketch.strokes.back().ignored = true;
-  EXPECT_TRUE(find_decorations(prepared(sketch)).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(sketch)).empty());
   // A boundary stroke is never carried off with a cable.
   Sketch cable = sphere_with_cable();
   cable.strokes.back().boundary = true;
-  EXPECT_TRUE(find_decorations(prepared(cable)).empty());
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(cable)).empty());
 }
 
 TEST(Decorations, InvalidOptionsAreNamed) {

@@ -13,18 +13,12 @@ namespace {
 
 using V3 = Eigen::Vector3d;
 
-Sketch prepared(Sketch sketch) {
-  sketch.assign_ids();
-  resample(sketch, 0.005 * sketch.bounding_box().diagonal());
-  return sketch;
-}
-
 double degrees_between(const V3& a, const V3& b) {
   return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 TEST(Openings, ACupRimIsFoundAndPointsOut) {
-  const Sketch cup = prepared(testing::cup_sketch());
+  const Sketch cup = testing::prepared_sketch(testing::cup_sketch());
   const auto found = find_openings(cup);
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(found[0].stroke, 1u);  // the rim, not the bottom circle
@@ -40,7 +34,7 @@ Sketch turned_cup(const V3& axis) {
   const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(V3::UnitZ(), axis);
   for (Stroke& s : cup.strokes)
     for (V3& p : s.points) p = turn * p;
-  return prepared(cup);
+  return testing::prepared_sketch(cup);
 }
 
 TEST(Openings, ASidewaysCupOpensSideways) {
@@ -62,7 +56,7 @@ TEST(Openings, SectionsUnderTheRimAreNotRims) {
       const double r = 0.35 + 0.15 * z / 0.8;
       return V3(r * std::cos(t), r * std::sin(t), z);
     }, 0.0, 2 * M_PI, 0.0125));
-  const auto found = find_openings(prepared(cup));
+  const auto found = find_openings(testing::prepared_sketch(cup));
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(found[0].stroke, 1u);
 }
@@ -70,18 +64,18 @@ TEST(Openings, SectionsUnderTheRimAreNotRims) {
 TEST(Openings, AStrokeAcrossTheRimClosesIt) {
   Sketch cup = testing::cup_sketch();
   cup.strokes.push_back(testing::sample_curve([](double t) { return V3(t, 0.1, 0.8); }, -0.45, 0.45, 0.01));
-  EXPECT_TRUE(find_openings(prepared(cup)).empty());
+  EXPECT_TRUE(find_openings(testing::prepared_sketch(cup)).empty());
 }
 
 TEST(Openings, ClosedShapesHaveNone) {
-  EXPECT_TRUE(find_openings(prepared(testing::cylinder_sketch())).empty());  // strokes across the caps
-  EXPECT_TRUE(find_openings(prepared(testing::sphere_sketch())).empty());
-  EXPECT_TRUE(find_openings(prepared(testing::torus_sketch())).empty());     // nothing under the hole
-  EXPECT_TRUE(find_openings(prepared(testing::cube_sketch())).empty());
+  EXPECT_TRUE(find_openings(testing::prepared_sketch(testing::cylinder_sketch())).empty());  // strokes across the caps
+  EXPECT_TRUE(find_openings(testing::prepared_sketch(testing::sphere_sketch())).empty());
+  EXPECT_TRUE(find_openings(testing::prepared_sketch(testing::torus_sketch())).empty());     // nothing under the hole
+  EXPECT_TRUE(find_openings(testing::prepared_sketch(testing::cube_sketch())).empty());
 }
 
 TEST(Openings, MarkedAndIgnoredStrokesAreLeftAlone) {
-  Sketch cup = prepared(testing::cup_sketch());
+  Sketch cup = testing::prepared_sketch(testing::cup_sketch());
   cup.strokes[1].boundary = true;
   EXPECT_TRUE(find_openings(cup).empty());
   cup.strokes[1].boundary = false;
