@@ -134,10 +134,10 @@ std::vector<std::array<V3, 2>> crease_guides(const Sketch& sketch, double diagon
   const double cos_same = portable::cos(options.same_way * std::numbers::pi / 180.0);
   const double lo = options.min_gap * diagonal, hi = options.max_gap * diagonal;
   const std::size_t n = corners.size();
-  // nearest[2 i + side]: the closest corner along +axis (side 0) or -axis (side 1) of corner i;
-  // same[2 i + side] the closest of those whose apex points the same way.
-  std::vector<int> nearest(2 * n, -1), same(2 * n, -1);
-  std::vector<double> nearest_d(2 * n, hi), same_d(2 * n, hi);
+  // nearest[2 i + side]: the chosen corner along +axis (side 0) or -axis (side 1) of corner i:
+  // the closest of those whose apex points the same way (rank 0), else the closest (rank 1).
+  std::vector<int> nearest(2 * n, -1), nearest_rank(2 * n, 2);
+  std::vector<double> nearest_d(2 * n, hi);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j) {
       if (corners[i].stroke == corners[j].stroke) continue;
@@ -147,17 +147,13 @@ std::vector<std::array<V3, 2>> crease_guides(const Sketch& sketch, double diagon
       const double along = g.dot(corners[i].axis);
       if (std::abs(along) < cos_align * d || std::abs(g.dot(corners[j].axis)) < cos_align * d) continue;
       const std::size_t slot = 2 * i + (along > 0 ? 0 : 1);
-      if (d < nearest_d[slot]) {
+      const int rank = options.same_way >= 180 || corners[i].apex.dot(corners[j].apex) >= cos_same ? 0 : 1;
+      if (rank < nearest_rank[slot] || (rank == nearest_rank[slot] && d < nearest_d[slot])) {
+        nearest_rank[slot] = rank;
         nearest_d[slot] = d;
         nearest[slot] = static_cast<int>(j);
       }
-      if (options.same_way < 180 && corners[i].apex.dot(corners[j].apex) >= cos_same && d < same_d[slot]) {
-        same_d[slot] = d;
-        same[slot] = static_cast<int>(j);
-      }
     }
-  for (std::size_t slot = 0; slot < 2 * n; ++slot)
-    if (same[slot] >= 0) nearest[slot] = same[slot];
   for (std::size_t i = 0; i < n; ++i)
     for (int side = 0; side < 2; ++side) {
       const int j = nearest[2 * i + side];
