@@ -192,6 +192,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"extract.unfold_rings", setter([](Params& p) -> auto& { return p.extract.unfold.rings; })},
       {"extract.unfold_rounds", setter([](Params& p) -> auto& { return p.extract.unfold.rounds; })},
       {"extract.unfold_max_share", setter([](Params& p) -> auto& { return p.extract.unfold.max_share; })},
+      {"extract.unfold_refit_share", setter([](Params& p) -> auto& { return p.extract.unfold.refit_share; })},
       {"extract.unfold_hold_fit", setter([](Params& p) -> auto& { return p.extract.unfold.hold_fit; })},
       {"extract.face_share", setter([](Params& p) -> auto& { return p.extract.face_share; })},
       {"extract.max_iterations", setter([](Params& p) -> auto& { return p.extract.energy.max_iterations; })},

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "surfacing/error.h"
+#include "surfacing/extract/fold_refit.h"
 #include "surfacing/parallel.h"
 #include "surfacing/segment/association.h"
 
@@ -259,46 +260,85 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
   solve_held(seamed, models, constraints, at_proxy, start_positions, on_plane, diagonal, options, progress,
              held, summary, folds);
   // A fold the fills leave is a region's model running through another's surface over more than
-  // a fill can span: the regions of its triangles cannot follow their strokes there without
-  // crossing, so they are held at the proxy and the mesh is solved again from the start. That
-  // solve is kept when it has fewer folds and stays about as near the strokes (stroke distance
-  // median and 95th percentile each at most hold_fit times the first's): where the proxy itself is
-  // far from the strokes (a shoe's sole rounder than drawn, a lamp's lumpy head) holding it trades
-  // an inner fold for a wrong shape, and where it is far from a few (a glass's foot, whose proxy
-  // ends on the box below it) the median alone does not show it.
+  // a fill can span. The mesh is solved again from the start with other models or holds (the
+  // fits below), and a solve is kept when it has fewer folds and stays about as near the strokes
+  // (stroke distance median and 95th percentile each at most hold_fit times the first's): where
+  // the proxy itself is far from the strokes (a shoe's sole rounder than drawn, a lamp's lumpy
+  // head) holding it trades an inner fold for a wrong shape, and where it is far from a few (a
+  // glass's foot, whose proxy ends on the box below it) the median alone does not show it.
+  std::vector<ImplicitModel> fitted = models;  // the models the kept solve projected onto
   if (!folds.empty() && options.unfold.hold_fit > 0.0) {
-    const std::vector<char> before = at_proxy;
-    for (const auto& pair : folds)
-      for (const int f : pair)
-        for (auto v : seamed.mesh.fv_range(seamed.mesh.face_handle(f)))
-          for (const int r : seamed.labels[v.idx()]) at_proxy[static_cast<std::size_t>(r)] = kRegionHeld;
-    const auto count = static_cast<std::size_t>(std::count(at_proxy.begin(), at_proxy.end(), kRegionHeld) -
-                                                std::count(before.begin(), before.end(), kRegionHeld));
-    if (count > 0) {
-      const auto fit = [&] { return stroke_distance(seamed.mesh, sketch, diagonal, false, options.energy.threads); };
-      const Eigen::MatrixX3d first = vertex_matrix(seamed.mesh);
-      const StrokeDistance first_fit = fit();
-      const ExtractSummary first_summary = summary;
-      std::vector<char> first_held = held;
+    const auto fit = [&] { return stroke_distance(seamed.mesh, sketch, diagonal, false, options.energy.threads); };
+    const StrokeDistance first_fit = fit();
+    // The solve kept so far, and another tried against it.
+    struct Solve {
+      Eigen::MatrixX3d positions;
+      ExtractSummary summary;
+      std::vector<char> held, at_proxy;
+      std::vector<std::array<int, 2>> folds;
+      std::vector<ImplicitModel> models;
+    };
+    Solve kept{vertex_matrix(seamed.mesh), summary, held, at_proxy, folds, models};
+    const auto try_solve = [&](std::vector<ImplicitModel> with, std::vector<char> at) {
       set_vertex_matrix(seamed.mesh, start_positions);
-      std::vector<std::array<int, 2>> left;
-      solve_held(seamed, models, constraints, at_proxy, start_positions, on_plane, diagonal, options,
-                 progress, held, summary, left);
-      const StrokeDistance held_fit = fit();
-      if (left.size() < folds.size() && held_fit.median <= options.unfold.hold_fit * first_fit.median &&
-          held_fit.p95 <= options.unfold.hold_fit * first_fit.p95) {
-        summary.unfold.held_regions = count;
-      } else {
-        set_vertex_matrix(seamed.mesh, first);
-        summary = first_summary;
-        held = std::move(first_held);
+      Solve next{Eigen::MatrixX3d(), summary, {}, std::move(at), {}, std::move(with)};
+      solve_held(seamed, next.models, constraints, next.at_proxy, start_positions, on_plane, diagonal, options,
+                 progress, next.held, next.summary, next.folds);
+      const StrokeDistance next_fit = fit();
+      const bool better = next.folds.size() < kept.folds.size() &&
+                          next_fit.median <= options.unfold.hold_fit * first_fit.median &&
+                          next_fit.p95 <= options.unfold.hold_fit * first_fit.p95;
+      next.positions = vertex_matrix(seamed.mesh);
+      if (better) kept = std::move(next);
+      return better;
+    };
+    // The regions the folds run through, fitted again as a plane, then as a quadric (fold_refit.h:
+    // a cubic can turn back on itself as a quartic does); the holds decided again for the new
+    // models.
+    if (options.unfold.refit_share > 0.0) {
+      const std::vector<int> regions = fold_regions(seamed, folds, options.unfold.refit_share);
+      for (int degree = 1; degree <= 2 && !kept.folds.empty(); ++degree) {
+        std::size_t refitted = 0;
+        std::vector<ImplicitModel> lower =
+            refit_regions(seamed, start_positions, models, regions, constraints.strokes->points, degree,
+                          options.smooth_fallback.reach * diagonal, diagonal, options.smooth_fallback.min_points,
+                          &refitted);
+        if (refitted == 0) continue;
+        set_vertex_matrix(seamed.mesh, start_positions);  // the holds are decided on the proxy
+        std::vector<char> at = regions_at_proxy(seamed, lower, open ? surface_strokes(sketch) : *constraints.strokes,
+                                                diagonal, options.smooth_fallback, options.energy, nullptr);
+        if (try_solve(std::move(lower), std::move(at))) {
+          kept.summary.unfold.refitted_regions = refitted;
+          kept.summary.unfold.refit_degree = degree;
+        }
       }
     }
+    // The regions of the triangles still crossing held at the proxy.
+    if (!kept.folds.empty()) {
+      std::vector<char> at = kept.at_proxy;
+      for (const auto& pair : kept.folds)
+        for (const int f : pair)
+          for (auto v : seamed.mesh.fv_range(seamed.mesh.face_handle(f)))
+            for (const int r : seamed.labels[v.idx()]) at[static_cast<std::size_t>(r)] = kRegionHeld;
+      const auto count = static_cast<std::size_t>(std::count(at.begin(), at.end(), kRegionHeld) -
+                                                  std::count(kept.at_proxy.begin(), kept.at_proxy.end(), kRegionHeld));
+      const std::size_t refitted = kept.summary.unfold.refitted_regions;
+      const int degree = kept.summary.unfold.refit_degree;
+      if (count > 0 && try_solve(kept.models, std::move(at))) {
+        kept.summary.unfold.held_regions = count;
+        kept.summary.unfold.refitted_regions = refitted;
+        kept.summary.unfold.refit_degree = degree;
+      }
+    }
+    set_vertex_matrix(seamed.mesh, kept.positions);
+    summary = kept.summary;
+    held = std::move(kept.held);
+    fitted = std::move(kept.models);
   }
   summary.optimize_s = seconds_since(t);
 
   // Region and crease flags, from the final positions.
-  const std::vector<double> w = regularization_weights(seamed, models, options.energy);
+  const std::vector<double> w = regularization_weights(seamed, fitted, options.energy);
   std::vector<int> half_labels(seamed.labels.size());
   std::vector<std::uint8_t> half_sharp(seamed.labels.size());
   for (std::size_t v = 0; v < seamed.labels.size(); ++v) {

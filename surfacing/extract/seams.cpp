@@ -204,4 +204,16 @@ LabeledMesh insert_seams(const TriMesh& proxy, const std::vector<int>& labels,
   return out;
 }
 
+int face_region(const LabeledMesh& mesh, const Eigen::MatrixX3i& F, int f) {
+  const auto& a = mesh.labels[F(f, 0)];
+  for (int l : a) {
+    const auto has = [&](int v) {
+      const auto& b = mesh.labels[v];
+      return std::find(b.begin(), b.end(), l) != b.end();
+    };
+    if (has(F(f, 1)) && has(F(f, 2))) return l;
+  }
+  return a.front();
+}
+
 }  // namespace sketchsurf

@@ -24,6 +24,11 @@ struct LabeledMesh {
   bool is_seam(int v) const { return labels[v].size() > 1; }
 };
 
+/// The region of face f of `mesh` (F: its faces as a matrix): the label its three vertices share
+/// (seams are inserted so that every face lies in one region); the first vertex's first label
+/// when none is shared.
+int face_region(const LabeledMesh& mesh, const Eigen::MatrixX3i& F, int f);
+
 /// Options for insert_seams().
 struct SeamOptions {
   double edge_margin = 0.15;  ///< inserted vertices stay in [margin, 1 - margin] of the crossed

@@ -38,20 +38,6 @@ bool SmoothFallbackOptions::valid(std::string* why) const {
 
 namespace {
 
-/// The region of face f: the label its three vertices share (seams are inserted so that every
-/// face lies in one region); the first vertex's first label when none is shared.
-int face_region(const LabeledMesh& mesh, const Eigen::MatrixX3i& F, int f) {
-  const auto& a = mesh.labels[F(f, 0)];
-  for (int l : a) {
-    const auto has = [&](int v) {
-      const auto& b = mesh.labels[v];
-      return std::find(b.begin(), b.end(), l) != b.end();
-    };
-    if (has(F(f, 1)) && has(F(f, 2))) return l;
-  }
-  return a.front();
-}
-
 // The smaller absolute principal curvature of the level set of `model` through x (1 / length):
 // the eigenvalues of the unit normal's derivative in the tangent plane, by central differences
 // of step h. 0 on a plane, a cylinder or a cone; 1 / r on a sphere of radius r.

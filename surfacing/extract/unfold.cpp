@@ -20,6 +20,10 @@ bool UnfoldOptions::valid(std::string* why) const {
     if (why) *why = "extract.unfold_max_share must be in (0, 1]";
     return false;
   }
+  if (!(refit_share >= 0.0 && refit_share <= 1.0)) {
+    if (why) *why = "extract.unfold_refit_share must be in [0, 1]";
+    return false;
+  }
   if (!(hold_fit >= 0.0)) {
     if (why) *why = "extract.unfold_hold_fit must be >= 0";
     return false;

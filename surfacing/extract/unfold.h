@@ -32,10 +32,15 @@ struct UnfoldOptions {
                             ///< the last
   double max_share = 0.15;  ///< a connected zone with more than this share of the mesh's
                             ///< vertices is left alone
+  double refit_share = 0.5;  ///< the regions on at least this share of the triangles that still
+                             ///< cross after both fills are fitted again as a plane, then as a
+                             ///< quadric (fold_refit.h), and the mesh solved again with them
+                             ///< (extract()), the solve with the fewest folds kept under
+                             ///< hold_fit's test; 0 = off
   double hold_fit = 1.25;   ///< regions whose triangles still cross after both fills are held at
-                            ///< the proxy and the mesh solved again (extract()), kept when its
-                            ///< stroke distance median and 95th percentile are each at most this
-                            ///< times the first's; 0 = off
+                            ///< the proxy and the mesh solved again (extract()), kept when it
+                            ///< has fewer folds and its stroke distance median and 95th
+                            ///< percentile are each at most this times the first's; 0 = off
   bool valid(std::string* why = nullptr) const;
 };
 
@@ -47,6 +52,9 @@ struct UnfoldSummary {
   std::size_t skipped_vertices = 0;  ///< vertices of zones the membrane left alone (larger than
                                      ///< max_share)
   int rounds = 0;                  ///< passes made, of both fills
+  std::size_t refitted_regions = 0;  ///< regions fitted again at a lower degree for the folds
+                                     ///< left (extract()): the figures are then that solve's
+  int refit_degree = 0;            ///< ... the degree they were fitted at (0: none kept)
   std::size_t held_regions = 0;    ///< regions held at the proxy for the folds left (extract()):
                                    ///< the figures above are then the second solve's
 };

@@ -255,6 +255,30 @@ TEST(FoldData, AChestsFoldTooWideToFillIsHeldAtTheProxy) {
   EXPECT_LT(r.report.stroke_distance.median, 0.006);
 }
 
+TEST(FoldData, ADressHemRefittedAsAQuadricDoesNotFold) {
+  // cassie/dress: the hem's quartic cap flares out through the skirt (3,011 crossing triangle
+  // pairs, too wide to fill; held at the proxy the hem turns lumpy and the gate refuses it). The
+  // hem's region, on nearly all of the crossing triangles, fitted again as a quadric: no fold is
+  // left and the strokes stay as near.
+  const SurfaceResult r = surfaced_without_folds(fs::path("cassie") / "dress.curves");
+  EXPECT_EQ(r.report.extraction.unfold.refit_degree, 2);
+  EXPECT_EQ(r.report.extraction.unfold.refitted_regions, 1u);
+  EXPECT_EQ(r.report.extraction.unfold.held_regions, 0u);
+  EXPECT_LT(r.report.stroke_distance.median, 0.0025);
+}
+
+TEST(FoldData, AShoesSoleRefittedAsAPlaneStaysAlongItsStrokes) {
+  // cassie/03-1-2: the sole's quartic curls up inside the shoe's sides (2,581 crossing triangle
+  // pairs) and bulges below the drawn sole. Fitted again as a plane, the sole lies along its
+  // strokes: a few crossing pairs are left where it meets the sides, the strokes as near as before.
+  const Sketch sketch = read_sketch(fs::path(SKETCHSURF_DATA_DIR) / "cassie" / "03-1-2.curves");
+  const SurfaceResult r = Surfacer().run(sketch);
+  EXPECT_EQ(r.report.extraction.unfold.refit_degree, 1);
+  EXPECT_LT(r.report.extraction.unfold.left_pairs, 50u);
+  EXPECT_LT(r.report.checks.self_intersections, 50u);
+  EXPECT_LT(r.report.stroke_distance.median, 0.0025);
+}
+
 TEST(SectionData, ADressDrawnAsSectionsIsALoftedTube) {
   // vns/dress: a waist circle, a four-lobed hem below it and a profile through both. VIPSS's
   // surface ran out between them to the strokes' box (its cross-section a rectangle round the

@@ -164,6 +164,8 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                                   {"moved_vertices", ex.unfold.moved_vertices},
                                   {"skipped_vertices", ex.unfold.skipped_vertices},
                                   {"rounds", ex.unfold.rounds},
+                                  {"refitted_regions", ex.unfold.refitted_regions},
+                                  {"refit_degree", ex.unfold.refit_degree},
                                   {"held_regions", ex.unfold.held_regions}}},
                       {"sharp_vertices", ex.sharp_vertices},
                       {"trimmed_faces", ex.trimmed_faces},
