@@ -279,9 +279,11 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
       std::vector<ImplicitModel> models;
     };
     Solve kept{vertex_matrix(seamed.mesh), summary, held, at_proxy, folds, models};
-    const auto try_solve = [&](std::vector<ImplicitModel> with, std::vector<char> at) {
+    const auto try_solve = [&](std::vector<ImplicitModel> with, std::vector<char> at,
+                               const SmoothFallbackSummary& fallback) {
       set_vertex_matrix(seamed.mesh, start_positions);
       Solve next{Eigen::MatrixX3d(), summary, {}, std::move(at), {}, std::move(with)};
+      next.summary.smooth_fallback = fallback;
       solve_held(seamed, next.models, constraints, next.at_proxy, start_positions, on_plane, diagonal, options,
                  progress, next.held, next.summary, next.folds);
       const StrokeDistance next_fit = fit();
@@ -305,9 +307,10 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
                           &refitted);
         if (refitted == 0) continue;
         set_vertex_matrix(seamed.mesh, start_positions);  // the holds are decided on the proxy
+        SmoothFallbackSummary fallback;
         std::vector<char> at = regions_at_proxy(seamed, lower, open ? surface_strokes(sketch) : *constraints.strokes,
-                                                diagonal, options.smooth_fallback, options.energy, nullptr);
-        if (try_solve(std::move(lower), std::move(at))) {
+                                                diagonal, options.smooth_fallback, options.energy, &fallback);
+        if (try_solve(std::move(lower), std::move(at), fallback)) {
           kept.summary.unfold.refitted_regions = refitted;
           kept.summary.unfold.refit_degree = degree;
         }
@@ -324,7 +327,7 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
                                                   std::count(kept.at_proxy.begin(), kept.at_proxy.end(), kRegionHeld));
       const std::size_t refitted = kept.summary.unfold.refitted_regions;
       const int degree = kept.summary.unfold.refit_degree;
-      if (count > 0 && try_solve(kept.models, std::move(at))) {
+      if (count > 0 && try_solve(kept.models, std::move(at), kept.summary.smooth_fallback)) {
         kept.summary.unfold.held_regions = count;
         kept.summary.unfold.refitted_regions = refitted;
         kept.summary.unfold.refit_degree = degree;
