@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "surfacing/error.h"
 #include "surfacing/extract/fold_refit.h"
@@ -298,13 +299,13 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
     // a cubic can turn back on itself as a quartic does); the holds decided again for the new
     // models.
     if (options.unfold.refit_share > 0.0) {
-      const std::vector<int> regions = fold_regions(seamed, folds, options.unfold.refit_share);
+      const RegionSamples samples =
+          region_samples(seamed, start_positions, fold_regions(seamed, folds, options.unfold.refit_share),
+                         constraints.strokes->points, options.smooth_fallback.reach * diagonal);
       for (int degree = 1; degree <= 2 && !kept.folds.empty(); ++degree) {
         std::size_t refitted = 0;
-        std::vector<ImplicitModel> lower =
-            refit_regions(seamed, start_positions, models, regions, constraints.strokes->points, degree,
-                          options.smooth_fallback.reach * diagonal, diagonal, options.smooth_fallback.min_points,
-                          &refitted);
+        std::vector<ImplicitModel> lower = refit_regions(models, samples, degree, diagonal,
+                                                         options.smooth_fallback.min_points, &refitted);
         if (refitted == 0) continue;
         set_vertex_matrix(seamed.mesh, start_positions);  // the holds are decided on the proxy
         SmoothFallbackSummary fallback;
@@ -316,13 +317,11 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
         }
       }
     }
-    // The regions of the triangles still crossing held at the proxy.
+    // The regions of the triangles still crossing (on any of them) held at the proxy.
     if (!kept.folds.empty()) {
       std::vector<char> at = kept.at_proxy;
-      for (const auto& pair : kept.folds)
-        for (const int f : pair)
-          for (auto v : seamed.mesh.fv_range(seamed.mesh.face_handle(f)))
-            for (const int r : seamed.labels[v.idx()]) at[static_cast<std::size_t>(r)] = kRegionHeld;
+      for (const int r : fold_regions(seamed, kept.folds, std::numeric_limits<double>::min()))
+        at[static_cast<std::size_t>(r)] = kRegionHeld;
       const auto count = static_cast<std::size_t>(std::count(at.begin(), at.end(), kRegionHeld) -
                                                   std::count(kept.at_proxy.begin(), kept.at_proxy.end(), kRegionHeld));
       const std::size_t refitted = kept.summary.unfold.refitted_regions;

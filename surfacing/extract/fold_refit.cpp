@@ -31,52 +31,59 @@ std::vector<int> fold_regions(const LabeledMesh& mesh, const std::vector<std::ar
   return out;
 }
 
-std::vector<ImplicitModel> refit_regions(const LabeledMesh& mesh, const Eigen::MatrixX3d& positions,
-                                         const std::vector<ImplicitModel>& models,
-                                         const std::vector<int>& regions, const Eigen::MatrixX3d& strokes,
-                                         int degree, double reach, double diagonal, std::size_t least,
-                                         std::size_t* refitted) {
-  std::vector<ImplicitModel> out = models;
-  if (refitted) *refitted = 0;
-  std::vector<char> wanted(models.size(), 0);
-  for (const int r : regions)
-    if (models[static_cast<std::size_t>(r)].degree > degree) wanted[static_cast<std::size_t>(r)] = 1;
-  if (std::none_of(wanted.begin(), wanted.end(), [](char w) { return w != 0; })) return out;
-
+RegionSamples region_samples(const LabeledMesh& mesh, const Eigen::MatrixX3d& positions,
+                             const std::vector<int>& regions, const Eigen::MatrixX3d& strokes, double reach) {
+  RegionSamples out;
+  out.regions = regions;
+  const std::size_t n = regions.size();
+  std::vector<int> slot;  // region -> index into `regions` (-1: none)
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto r = static_cast<std::size_t>(regions[k]);
+    if (r >= slot.size()) slot.resize(r + 1, -1);
+    slot[r] = static_cast<int>(k);
+  }
+  const auto slot_of = [&](int r) { return static_cast<std::size_t>(r) < slot.size() ? slot[static_cast<std::size_t>(r)] : -1; };
   const Eigen::MatrixX3i F = face_matrix(mesh.mesh);
   const ClosestFaceTree tree(positions, F);
-  std::vector<std::vector<Eigen::Index>> points(models.size());
+  std::vector<std::vector<Eigen::Index>> points(n), own(n);
   for (Eigen::Index i = 0; i < strokes.rows(); ++i) {
     const Eigen::Vector3d p = strokes.row(i).transpose();
     Eigen::Vector3d q;
     const int f = tree.closest_face(p, &q);
     if (f < 0 || (q - p).norm() > reach) continue;
-    const int r = face_region(mesh, F, f);
-    if (wanted[static_cast<std::size_t>(r)]) points[static_cast<std::size_t>(r)].push_back(i);
+    const int k = slot_of(face_region(mesh, F, f));
+    if (k >= 0) points[static_cast<std::size_t>(k)].push_back(i);
   }
-  Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(positions.rows(), 3);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = positions.row(F(f, 0)), b = positions.row(F(f, 1)), c = positions.row(F(f, 2));
-    const Eigen::RowVector3d n = (b - a).cross(c - a).transpose();
-    for (int k = 0; k < 3; ++k) normals.row(F(f, k)) += n;
+  const Eigen::MatrixX3d normals = vertex_normals(positions, F);
+  for (std::size_t v = 0; v < mesh.labels.size(); ++v) {
+    const int k = mesh.labels[v].size() == 1 ? slot_of(mesh.labels[v].front()) : -1;
+    if (k >= 0 && normals.row(static_cast<Eigen::Index>(v)).squaredNorm() > 0.0)
+      own[static_cast<std::size_t>(k)].push_back(static_cast<Eigen::Index>(v));
   }
+  const auto rows = [](const Eigen::MatrixX3d& from, const std::vector<Eigen::Index>& which) {
+    Eigen::MatrixX3d m(static_cast<Eigen::Index>(which.size()), 3);
+    for (std::size_t i = 0; i < which.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = from.row(which[i]);
+    return m;
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    out.points.push_back(rows(strokes, points[k]));
+    out.vertices.push_back(rows(positions, own[k]));
+    out.normals.push_back(rows(normals, own[k]));
+  }
+  return out;
+}
+
+std::vector<ImplicitModel> refit_regions(const std::vector<ImplicitModel>& models, const RegionSamples& samples,
+                                         int degree, double diagonal, std::size_t least,
+                                         std::size_t* refitted) {
+  std::vector<ImplicitModel> out = models;
+  if (refitted) *refitted = 0;
   FitOptions fit;
   fit.length_unit = diagonal;
-  for (std::size_t r = 0; r < models.size(); ++r) {
-    if (!wanted[r] || points[r].size() < least) continue;
-    std::vector<Eigen::Index> own;
-    for (std::size_t v = 0; v < mesh.labels.size(); ++v)
-      if (mesh.labels[v].size() == 1 && mesh.labels[v].front() == static_cast<int>(r) &&
-          normals.row(static_cast<Eigen::Index>(v)).squaredNorm() > 0.0)
-        own.push_back(static_cast<Eigen::Index>(v));
-    Eigen::MatrixX3d P(static_cast<Eigen::Index>(points[r].size()), 3);
-    for (std::size_t i = 0; i < points[r].size(); ++i) P.row(static_cast<Eigen::Index>(i)) = strokes.row(points[r][i]);
-    Eigen::MatrixX3d at(static_cast<Eigen::Index>(own.size()), 3), n(static_cast<Eigen::Index>(own.size()), 3);
-    for (std::size_t i = 0; i < own.size(); ++i) {
-      at.row(static_cast<Eigen::Index>(i)) = positions.row(own[i]);
-      n.row(static_cast<Eigen::Index>(i)) = normals.row(own[i]).normalized();
-    }
-    out[r] = fit_implicit(degree, P, at, n, fit);
+  for (std::size_t k = 0; k < samples.regions.size(); ++k) {
+    const auto r = static_cast<std::size_t>(samples.regions[k]);
+    if (models[r].degree <= degree || static_cast<std::size_t>(samples.points[k].rows()) < least) continue;
+    out[r] = fit_implicit(degree, samples.points[k], samples.vertices[k], samples.normals[k], fit);
     if (refitted) ++*refitted;
   }
   return out;

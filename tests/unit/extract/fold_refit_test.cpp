@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "tests/support/shapes.h"
 #include "tests/unit/extract/fixtures.h"
@@ -60,6 +61,8 @@ TEST(FoldRegions, TheRegionOnMostFoldedTrianglesIsFound) {
   EXPECT_EQ(fold_regions(s.mesh, folds, 0.25), std::vector<int>({2, 4}));
   EXPECT_TRUE(fold_regions(s.mesh, folds, 0.9).empty());
   EXPECT_TRUE(fold_regions(s.mesh, {}, 0.5).empty());
+  // A share just above 0: every region on any folded triangle.
+  EXPECT_EQ(fold_regions(s.mesh, folds, std::numeric_limits<double>::min()), std::vector<int>({2, 4}));
 }
 
 TEST(RefitRegions, AFlatRegionsCurvedModelBecomesItsPlane) {
@@ -67,8 +70,10 @@ TEST(RefitRegions, AFlatRegionsCurvedModelBecomesItsPlane) {
   const Eigen::MatrixX3d positions = vertex_matrix(s.mesh.mesh);
   const double diagonal = 2.0 * std::sqrt(3.0);
   std::size_t refitted = 0;
-  const std::vector<ImplicitModel> out =
-      refit_regions(s.mesh, positions, s.models, {2}, s.strokes, 1, 0.02 * diagonal, diagonal, 20, &refitted);
+  const RegionSamples samples = region_samples(s.mesh, positions, {2}, s.strokes, 0.02 * diagonal);
+  ASSERT_EQ(samples.points.size(), 1u);
+  EXPECT_EQ(samples.points[0].rows(), s.strokes.rows());
+  const std::vector<ImplicitModel> out = refit_regions(s.models, samples, 1, diagonal, 20, &refitted);
   EXPECT_EQ(refitted, 1u);
   ASSERT_EQ(out.size(), s.models.size());
   EXPECT_EQ(out[2].degree, 1);
@@ -92,13 +97,12 @@ TEST(RefitRegions, AModelAlreadyOfThatDegreeOrWithTooFewPointsIsKept) {
   const double diagonal = 2.0 * std::sqrt(3.0);
   std::size_t refitted = 1;
   // Degree 2: the sphere is a quadric already.
-  std::vector<ImplicitModel> out =
-      refit_regions(s.mesh, positions, s.models, {2}, s.strokes, 2, 0.02 * diagonal, diagonal, 20, &refitted);
+  const RegionSamples samples = region_samples(s.mesh, positions, {2}, s.strokes, 0.02 * diagonal);
+  std::vector<ImplicitModel> out = refit_regions(s.models, samples, 2, diagonal, 20, &refitted);
   EXPECT_EQ(refitted, 0u);
   EXPECT_EQ(out[2].coefficients, s.models[2].coefficients);
   // More points asked for than the region has.
-  out = refit_regions(s.mesh, positions, s.models, {2}, s.strokes, 1, 0.02 * diagonal, diagonal,
-                      static_cast<std::size_t>(s.strokes.rows()) + 1, &refitted);
+  out = refit_regions(s.models, samples, 1, diagonal, static_cast<std::size_t>(s.strokes.rows()) + 1, &refitted);
   EXPECT_EQ(refitted, 0u);
   EXPECT_EQ(out[2].degree, 2);
 }
