@@ -108,6 +108,8 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.clean_lambda", setter([](Params& p) -> auto& { return p.proxy.clean_lambda; })},
       {"extract.smooth_fallback", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.enabled; })},
       {"extract.smooth_fallback_margin", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.margin; })},
+      {"extract.smooth_fallback_rounded_margin", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.rounded_margin; })},
+      {"extract.smooth_fallback_rounded_degree", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.rounded_degree; })},
       {"extract.smooth_fallback_pull_ratio", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.pull_ratio; })},
       {"extract.smooth_fallback_pull_weight", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.pull_weight; })},
       {"extract.smooth_fallback_pull_curvature", setter([](Params& p) -> auto& { return p.extract.smooth_fallback.pull_curvature; })},
@@ -122,6 +124,9 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.far_tie", setter([](Params& p) -> auto& { return p.proxy.far_tie; })},
       {"proxy.far_most", setter([](Params& p) -> auto& { return p.proxy.far_most; })},
       {"proxy.far_extra_genus", setter([](Params& p) -> auto& { return p.proxy.far_extra_genus; })},
+      {"proxy.rounded_misfit", setter([](Params& p) -> auto& { return p.proxy.rounded_misfit; })},
+      {"proxy.rounded_far", setter([](Params& p) -> auto& { return p.proxy.rounded_far; })},
+      {"proxy.misfit_reach", setter([](Params& p) -> auto& { return p.proxy.misfit_reach; })},
       {"proxy.miss_distance", setter([](Params& p) -> auto& { return p.proxy.miss_distance; })},
       {"proxy.confine_margin", setter([](Params& p) -> auto& { return p.proxy.confine_margin; })},
       {"proxy.confine_radius", setter([](Params& p) -> auto& { return p.proxy.confine_radius; })},
@@ -398,6 +403,7 @@ SurfaceResult Surfacer::run(const Sketch& input, const TriMesh* user_proxy) cons
   // a curved region's model, fitted to a few section and profile strokes, only bulges there: every
   // curved region stays at the proxy (planes, a section's cap, are still projected onto).
   if (report.proxy.loft_sections > 0) extract_options.smooth_fallback.hold_curved = true;
+  extract_options.smooth_fallback.rounded = report.proxy.rounded;
   extract_options.drawn_faces = report.proxy.drawn_faces;
   ExtractedSurface surface = [&] {
     try {

@@ -17,6 +17,14 @@ bool SmoothFallbackOptions::valid(std::string* why) const {
     if (why) *why = "extract smooth_fallback margin must be >= 0";
     return false;
   }
+  if (!(rounded_margin > -1.0 && rounded_margin <= margin)) {
+    if (why) *why = "extract smooth_fallback rounded_margin must be in (-1, margin]";
+    return false;
+  }
+  if (rounded_degree < 0 || rounded_degree > 4) {
+    if (why) *why = "extract smooth_fallback rounded_degree must be in [0, 4]";
+    return false;
+  }
   if (!(agree > 0.0)) {
     if (why) *why = "extract smooth_fallback agree must be > 0";
     return false;
@@ -95,8 +103,10 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
   std::vector<char> closer(models.size(), 0), nearly(models.size(), 0);
   for (std::size_t r = 0; r < models.size(); ++r) {
     if (count[r] < options.min_points || models[r].degree <= 1) continue;
-    closer[r] = options.hold_curved || to_proxy[r] < (1.0 + options.margin) * to_model[r];
-    nearly[r] = !closer[r] && to_proxy[r] < options.pull_ratio * to_model[r];
+    const bool low = options.rounded && models[r].degree <= options.rounded_degree;
+    const double margin = low ? options.rounded_margin : options.margin;
+    closer[r] = options.hold_curved || to_proxy[r] < (1.0 + margin) * to_model[r];
+    nearly[r] = !closer[r] && !low && to_proxy[r] < options.pull_ratio * to_model[r];
   }
   out.regions = static_cast<std::size_t>(
       std::count_if(count.begin(), count.end(), [&](std::size_t c) { return c >= options.min_points; }));
@@ -139,7 +149,9 @@ std::vector<char> regions_at_proxy(const LabeledMesh& mesh, const std::vector<Im
     auto& m = moves[r];
     const auto p95 = m.begin() + static_cast<std::ptrdiff_t>(m.size() * 95 / 100);
     if (p95 != m.end()) std::nth_element(m.begin(), p95, m.end());
-    if (p95 != m.end() && *p95 > options.agree * diagonal) continue;  // the model reshapes it
+    // The model reshapes it; not asked of a region held at a proxy that follows its strokes
+    // (rounded): there a model reshaping it strays from them between them.
+    if (!(options.rounded && closer[r]) && p95 != m.end() && *p95 > options.agree * diagonal) continue;
     kept[r] = closer[r] ? kRegionHeld : kRegionPulled;
     ++(closer[r] ? out.kept : out.pulled);
   }

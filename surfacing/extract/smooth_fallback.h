@@ -49,6 +49,19 @@ struct SmoothFallbackOptions {
                              ///< mean squared distance exceeds the model's by more than this share:
                              ///< a model that fits them only about as well buys nothing at the
                              ///< strokes and may bulge between them, where the proxy is smooth
+  bool rounded = false;      ///< the proxy follows its strokes closely rather than smoothly (VIPSS
+                             ///< with less smoothing where more rounds the shape off them,
+                             ///< ProxyReport::rounded; set by the pipeline): between the strokes it
+                             ///< sags and bulges by the tremor it follows. Then a region whose model
+                             ///< is of degree rounded_degree or less (a plane, a cylinder, a cone)
+                             ///< is held only when the proxy is clearly nearer its strokes
+                             ///< (rounded_margin) and never pulled toward it, and a held region
+                             ///< stays held even where its model would reshape it (agree unused)
+  double rounded_margin = -0.2;  ///< ... the margin then: held when the proxy's mean squared
+                                 ///< distance is below 0.8 times the model's (a quadric that fits
+                                 ///< about as well as a nearly interpolating surface is the shape)
+  int rounded_degree = 2;    ///< ... for models of at most this degree (a quartic that fits about as
+                             ///< well follows the tremor too)
   double agree = 0.02;       ///< a region stays projected when the projection onto its model moves
                              ///< 5% of its vertices farther than this (fraction of the diagonal):
                              ///< there the model corrects the proxy's shape, not its detail
@@ -89,11 +102,14 @@ inline constexpr char kRegionPulled = 2;     ///< projected, and pulled toward t
 /// options.reach * diagonal of `mesh` (the seamed proxy, before optimisation) belong to the region
 /// of their closest face; a region stays when the mean squared distance of its points to the
 /// proxy is below (1 + options.margin) times their mean squared first-order distance to its
-/// model (each capped at the reach), its model is not a plane (degree 1), and the projection that
-/// starts the solve (project_vertices() with `energy`'s steps) moves at most 5% of its own
-/// vertices farther than options.agree * diagonal; with options.hold_curved, when it has enough
+/// model (each capped at the reach; with options.rounded, (1 + options.rounded_margin) times for a
+/// model of at most options.rounded_degree), its model is not a plane (degree 1), and the
+/// projection that starts the solve (project_vertices() with `energy`'s steps) moves at most 5% of
+/// its own vertices farther than options.agree * diagonal (not asked with options.rounded); with
+/// options.hold_curved, when it has enough
 /// points and its model is not a plane. kRegionPulled for a region with enough
-/// points, a model that is not a plane and not held, a proxy mean squared distance below
+/// points, a model that is not a plane and not held (nor of at most options.rounded_degree with
+/// options.rounded), a proxy mean squared distance below
 /// options.pull_ratio times the model's, a model doubly curved at the region's own vertices
 /// (options.pull_curvature) and the same bound on the projection's moves (a proxy dented by
 /// scribbles, 3% off a smooth body, is not pulled toward); kRegionProjected otherwise. Fills

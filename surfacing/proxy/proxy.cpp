@@ -21,6 +21,7 @@
 #include "surfacing/portable_math.h"
 #include "surfacing/proxy/attract.h"
 #include "surfacing/proxy/loft.h"
+#include "surfacing/proxy/misfit.h"
 #include "surfacing/proxy/part_normals.h"
 #include "surfacing/proxy/point_grid.h"
 #include "surfacing/proxy/polygonize.h"
@@ -120,11 +121,13 @@ void fill_topology(const TriMesh& mesh, ProxyReport& report) {
 }
 
 // Stroke points every half edge length (unit frame): the Least-Squares Mesh targets.
-Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge) {
+Eigen::MatrixX3d stroke_targets(const Sketch& unit, double edge, std::vector<int>* stroke_of = nullptr) {
   std::vector<Eigen::Vector3d> points;
-  for (const auto& s : unit.strokes) {
+  for (std::size_t k = 0; k < unit.strokes.size(); ++k) {
+    const Stroke& s = unit.strokes[k];
     const Stroke dense = s.points.size() > 1 ? resample(s, 0.5 * edge) : s;
     points.insert(points.end(), dense.points.begin(), dense.points.end());
+    if (stroke_of) stroke_of->resize(points.size(), static_cast<int>(k));
   }
   Eigen::MatrixX3d targets(static_cast<Eigen::Index>(points.size()), 3);
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -851,6 +854,9 @@ bool ProxyOptions::valid(std::string* why) const {
   if (!(far_distance > 0.0 && far_distance < 1.0)) return fail("proxy far_distance must be in (0, 1)");
   if (!(far_tie >= 0.0 && far_tie < 1.0)) return fail("proxy far_tie must be in [0, 1)");
   if (far_extra_genus < 0) return fail("proxy far_extra_genus must be >= 0");
+  if (!std::isfinite(rounded_misfit)) return fail("proxy rounded_misfit must be finite");
+  if (!(rounded_far >= 0.0 && rounded_far < 1.0)) return fail("proxy rounded_far must be in [0, 1)");
+  if (!(misfit_reach > 0.0 && misfit_reach < 0.5)) return fail("proxy misfit_reach must be in (0, 0.5)");
   if (!(far_most > 0.0 && far_most <= 1.0)) return fail("proxy far_most must be in (0, 1]");
   if (!(miss_distance > 0.0 && miss_distance < 1.0)) return fail("proxy miss_distance must be in (0, 1)");
   if (!(window_value >= 0.0 && window_value < 0.5))
@@ -943,11 +949,12 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   check_encloses(samples);
   // A clean network's first solve (clean_lambda) on denser samples: nearly interpolating, it
   // follows the strokes between the samples only as closely as they lie.
-  Eigen::MatrixX3d dense;
-  if (clean && options.lambda < 0.0) {
+  const auto sample_densely = [&] {
     sampling.count = std::max(options.clean_points, options.points);
-    dense = sample_strokes(unit, sampling);
-  }
+    return sample_strokes(unit, sampling);
+  };
+  Eigen::MatrixX3d dense;
+  if (clean && options.lambda < 0.0) dense = sample_densely();
   progress.update("sampling strokes", 1.0);
   r.sampling_seconds = seconds_since(t0);
 
@@ -962,6 +969,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   box.min.array() -= options.padding;
   box.max.array() += options.padding;
   const Eigen::MatrixX3d stroke_points = stroke_targets(unit, options.cell);
+  std::vector<int> misfit_strokes;
+  const Eigen::MatrixX3d misfit_points = stroke_targets(unit, 2.0 * options.cell, &misfit_strokes);
   const PointGrid stroke_grid(stroke_points);
   Outline outline;
   find_outline(unit, options, outline);
@@ -1057,6 +1066,21 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       closed += found.thin.size();
     return closed;
   };
+  // The wider windows that no stroke depicts, closed where that removes handles (once).
+  const auto close_undrawn = [&](Candidate& c) {
+    if (c.genus == 0 || c.undrawn.empty()) return;
+    const auto t = Clock::now();
+    MeshTopology topology;
+    topology.genus = c.genus;
+    topology.components = c.components;
+    if (try_bumps(c, topology, c.undrawn, Kind::kWindows)) {
+      c.windows += c.undrawn.size();
+      c.genus = topology.genus;
+      c.far = far_fraction(c.mesh, stroke_grid, options.far_distance, threads);
+    }
+    c.undrawn.clear();
+    r.polygonize_seconds += seconds_since(t);
+  };
   const auto solve = [&](double lambda, const Eigen::MatrixX3d& at, const VipssStart* from) {
     auto t = Clock::now();
     Candidate c;
@@ -1124,11 +1148,35 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                              kept.genus <= c.genus + options.far_extra_genus;
     if (kept.mesh.F.rows() == 0 || (c.mesh.F.rows() > 0 && !kept_better)) kept = std::move(c);
   };
+  // Where the second weight's zero set closes but rounds the shape off its strokes (their misfits
+  // shared between neighbouring strokes, misfit.h), the first weight, solved on the denser samples
+  // (clean_points), is kept instead when its zero set closes too with no more handles (each with
+  // its undrawn windows closed), parts or surface far from every stroke: less smoothing there
+  // follows the shape, not the tremor.
+  const auto holds_as_well = [&](Candidate& least, Candidate& c) {
+    close_undrawn(least);
+    close_undrawn(c);
+    return least.mesh.F.rows() > 0 && least.vipss->summary.closed && least.genus <= c.genus &&
+           least.components == c.components && least.far <= c.far + options.rounded_far;
+  };
   for (std::size_t i = ladder.size() > 1 && !clean ? 1 : 0; i < ladder.size(); ++i) {
     Candidate c = solve(ladder[i], i == 0 && dense.rows() > 0 ? dense : samples, nullptr);
     const bool closed = c.vipss->summary.closed;
-    if (i == 1 && !clean && c.mesh.F.rows() > 0 && c.far >= options.far_tie)
-      consider(solve(ladder[0], samples, nullptr));
+    if (i == 1 && !clean && c.mesh.F.rows() > 0) {
+      if (closed && options.rounded_misfit < 1.0)
+        r.shared_misfit = shared_misfit(c.vipss->function, misfit_points, misfit_strokes,
+                                        options.misfit_reach, threads);
+      if (closed && r.shared_misfit > options.rounded_misfit) {
+        dense = sample_densely();
+        Candidate least = solve(ladder[0], dense, nullptr);
+        if (holds_as_well(least, c)) {
+          kept = std::move(least);
+          r.rounded = true;
+          break;
+        }
+      }
+      if (c.far >= options.far_tie) consider(solve(ladder[0], samples, nullptr));
+    }
     consider(std::move(c));
     if (closed) break;
   }
@@ -1206,18 +1254,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // The wider windows that no stroke depicts are closed on the kept solve only: on every solve
   // they would change the choice above, which weighs handles (a smoother solve that webs a chair's
   // back, its last window closed, would win over one that keeps the back open).
-  if (kept.genus > 0 && !kept.undrawn.empty()) {
-    const auto t = Clock::now();
-    MeshTopology topology;
-    topology.genus = kept.genus;
-    topology.components = kept.components;
-    if (try_bumps(kept, topology, kept.undrawn, Kind::kWindows)) {
-      kept.windows += kept.undrawn.size();
-      kept.genus = topology.genus;
-      kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance, threads);
-    }
-    r.polygonize_seconds += seconds_since(t);
-  }
+  close_undrawn(kept);
   // The outline cut, where the strokes frame a surface (a sketch whose surface lies mostly far
   // from every stroke, a flower's petals, is left whole: cut, it falls apart into pieces that no
   // longer show that it depicts no surface). Kept when it adds no handle and splits nothing.

@@ -53,6 +53,14 @@ struct ProxyOptions {
                                ///< a flower's petals, a painterly scene) ...
   int far_extra_genus = 3;     ///< ... and at most this many more handles (more: windows through
                                ///< thin double walls, not openings the strokes depict)
+  double rounded_misfit = 0.6;  ///< the ladder's first weight is kept instead of its second when
+                                ///< the second's zero set, confined, rounds the shape off the
+                                ///< strokes: their signed misfits correlate between neighbouring
+                                ///< strokes above this (misfit.h; tremor alone: below 0.1; a car's
+                                ///< or a box's rounded edges: 0.35-0.8; >= 1: never) ...
+  double rounded_far = 0.005;   ///< ... and the first's is confined too, with no more handles or
+                                ///< parts, and far area at most this fraction more
+  double misfit_reach = 0.04;   ///< strokes within this (fraction of diagonal) are neighbours
   double miss_distance = 0.02; ///< a stroke point farther than this from the proxy (fraction of
                                ///< diagonal) counts as missed (report: missed_strokes)
   double confine_margin = 0.1;   ///< a zero set is confined when f has one sign all over the faces
@@ -238,6 +246,10 @@ struct ProxyReport {
   double lambda = 0.0;            ///< automatic proxy: the smoothing weight used
   double crossing_gap = -1.0;     ///< automatic proxy: the strokes' median distance where they
                                   ///< cross (fraction of diagonal; < 0: too few crossings)
+  double shared_misfit = 0.0;     ///< automatic proxy: the ladder's second weight's misfit shared
+                                  ///< between neighbouring strokes (misfit.h; 0: not measured)
+  bool rounded = false;           ///< automatic proxy: ... above rounded_misfit, and the first
+                                  ///< weight was kept instead
   double far_area = 0.0;          ///< automatic proxy: area fraction of the kept solve's surface
                                   ///< (or of the loft) farther than far_distance from every stroke
   double missed_strokes = 0.0;    ///< automatic proxy: fraction of the stroke points farther than

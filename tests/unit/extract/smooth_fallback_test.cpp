@@ -217,6 +217,38 @@ TEST(SmoothFallback, HoldingCurvedRegionsKeepsEvenModelsThatWouldReshapeThem) {
   EXPECT_EQ(summary.held, s.proxy.mesh.n_vertices());
 }
 
+TEST(SmoothFallback, AtAProxyThatFollowsItsStrokesAQuadricAboutAsNearIsProjectedOnto) {
+  // The second model a little farther from its strokes than the proxy (mean squared distance 1.1
+  // times the proxy's): held at a smooth proxy; projected onto at one that follows the strokes
+  // closely (rounded), where the proxy's own nearness is its tremor's; held there too when the
+  // proxy is clearly nearer (1.5 times), or when the same sphere is a quartic's zero set.
+  Scene s = two_spheres();
+  const std::vector<ImplicitModel> models = second_sphere_nearer(s, 1.0 / 1.1);
+  SmoothFallbackOptions rounded;
+  rounded.rounded = true;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {})[1], kRegionHeld);
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, rounded, {})[1], kRegionProjected);
+  Scene clearly = two_spheres();
+  EXPECT_EQ(regions_at_proxy(clearly.proxy, second_sphere_nearer(clearly, 1.0 / 1.5), clearly.strokes, 6.0,
+                             rounded, {})[1],
+            kRegionHeld);
+  std::vector<ImplicitModel> quartics = models;
+  quartics[1].degree = 4;
+  quartics[1].coefficients.conservativeResizeLike(Eigen::VectorXd::Zero(35));
+  EXPECT_EQ(regions_at_proxy(s.proxy, quartics, s.strokes, 6.0, rounded, {})[1], kRegionHeld);
+}
+
+TEST(SmoothFallback, AtAProxyThatFollowsItsStrokesAHeldRegionStaysEvenWhereItsModelWouldReshapeIt) {
+  // Radius 1.2 (the reshaping model above): projected onto at a smooth proxy, held at one that
+  // follows the strokes closely, where a model so far from them strays between them.
+  const Scene s = two_spheres();
+  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
+                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.2)};
+  SmoothFallbackOptions rounded;
+  rounded.rounded = true;
+  EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, rounded, {}), std::vector<char>({0, 1}));
+}
+
 TEST(SmoothFallback, APlaneIsAlwaysProjectedOnto) {
   // A unit square waved by 1% in z, drawn with lines along y on the wave: the proxy passes through
   // the strokes, the plane z = 0 misses them by up to 0.01 (less than `agree` moves it). As a
