@@ -76,6 +76,12 @@ std::vector<ImplicitModel> second_sphere_nearer(Scene& s, double nearer) {
   return {sphere_model(Eigen::Vector3d::Zero(), 1.0), sphere_model(c, 1.0 + std::sqrt(squares / nearer))};
 }
 
+/// The scene's models: the first sphere exact, the second of radius 1.2, whose projection would
+/// move the second proxy sphere by 0.2, 3.3% of the diagonal (more than `agree`).
+std::vector<ImplicitModel> reshaping_models() {
+  return {sphere_model(Eigen::Vector3d::Zero(), 1.0), sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.2)};
+}
+
 TEST(SmoothFallback, ARegionWhoseModelMissesItsStrokesStaysAtTheProxy) {
   const Scene s = two_spheres();
   // Region 0's model is the drawn sphere; region 1's is 8% too large: it misses every stroke
@@ -193,10 +199,8 @@ TEST(SmoothFallback, ACylinderOnlyALittleNearerItsStrokesIsProjectedWithoutAPull
 
 TEST(SmoothFallback, AModelThatReshapesTheRegionIsProjectedOntoEvenWhenFartherFromItsStrokes) {
   const Scene s = two_spheres();
-  // Radius 1.2: the projection would move the second sphere by 0.2, 3.3% of the diagonal (more
-  // than `agree`): the model corrects the proxy's shape there, it is not a detail it misses.
-  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
-                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.2)};
+  // The model corrects the proxy's shape there, it is not a detail it misses.
+  const std::vector<ImplicitModel> models = reshaping_models();
   EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, {}, {}), std::vector<char>(2, 0));
   SmoothFallbackOptions loose;
   loose.agree = 0.05;
@@ -207,8 +211,7 @@ TEST(SmoothFallback, HoldingCurvedRegionsKeepsEvenModelsThatWouldReshapeThem) {
   // A lofted proxy: every region that is not a plane stays, the exact model and the one that would
   // move the second sphere by 0.2 alike.
   const Scene s = two_spheres();
-  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
-                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.2)};
+  const std::vector<ImplicitModel> models = reshaping_models();
   SmoothFallbackOptions hold;
   hold.hold_curved = true;
   SmoothFallbackSummary summary;
@@ -242,8 +245,7 @@ TEST(SmoothFallback, AtAProxyThatFollowsItsStrokesAHeldRegionStaysEvenWhereItsMo
   // Radius 1.2 (the reshaping model above): projected onto at a smooth proxy, held at one that
   // follows the strokes closely, where a model so far from them strays between them.
   const Scene s = two_spheres();
-  const std::vector<ImplicitModel> models{sphere_model(Eigen::Vector3d::Zero(), 1.0),
-                                          sphere_model(Eigen::Vector3d(4.0, 0.0, 0.0), 1.2)};
+  const std::vector<ImplicitModel> models = reshaping_models();
   SmoothFallbackOptions rounded;
   rounded.rounded = true;
   EXPECT_EQ(regions_at_proxy(s.proxy, models, s.strokes, 6.0, rounded, {}), std::vector<char>({0, 1}));
