@@ -1148,6 +1148,9 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                              kept.genus <= c.genus + options.far_extra_genus;
     if (kept.mesh.F.rows() == 0 || (c.mesh.F.rows() > 0 && !kept_better)) kept = std::move(c);
   };
+  const auto misfit_of = [&](const Candidate& c) {
+    return shared_misfit(c.vipss->function, misfit_points, misfit_strokes, options.misfit_reach, threads);
+  };
   // Where the second weight's zero set closes but rounds the shape off its strokes (their misfits
   // shared between neighbouring strokes, misfit.h), the first weight, solved on the denser samples
   // (clean_points), is kept instead when its zero set closes too with no more handles (each with
@@ -1164,8 +1167,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     const bool closed = c.vipss->summary.closed;
     if (i == 1 && !clean && c.mesh.F.rows() > 0) {
       if (closed && options.rounded_misfit < 1.0)
-        r.shared_misfit = shared_misfit(c.vipss->function, misfit_points, misfit_strokes,
-                                        options.misfit_reach, threads);
+        r.shared_misfit = misfit_of(c);
       if (closed && r.shared_misfit > options.rounded_misfit) {
         dense = sample_densely();
         Candidate least = solve(ladder[0], dense, nullptr);
@@ -1176,6 +1178,18 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
         }
       }
       if (c.far >= options.far_tie) consider(solve(ladder[0], samples, nullptr));
+    }
+    // A clean network's strokes lie on the surface: where the ladder's last weight rounds the shape
+    // off them, the less smoothed solve already kept stays when it frames no more handles, parts or
+    // far surface, closed or not (an open cup's rim confined by the strokes' neighbourhood).
+    if (clean && i + 1 == ladder.size() && i > 0 && c.mesh.F.rows() > 0 && kept.mesh.F.rows() > 0 &&
+        kept.genus <= c.genus && kept.components == c.components && kept.far <= c.far + options.rounded_far &&
+        options.rounded_misfit < 1.0) {
+      r.shared_misfit = misfit_of(c);
+      if (r.shared_misfit > options.rounded_misfit) {
+        r.rounded = true;
+        break;
+      }
     }
     consider(std::move(c));
     if (closed) break;

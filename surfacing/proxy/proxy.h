@@ -59,7 +59,11 @@ struct ProxyOptions {
                                 ///< strokes above this (misfit.h; tremor alone: below 0.1; a car's
                                 ///< or a box's rounded edges: 0.35-0.8; >= 1: never) ...
   double rounded_far = 0.005;   ///< ... and the first's is confined too, with no more handles or
-                                ///< parts, and far area at most this fraction more
+                                ///< parts, and far area at most this fraction more. On a clean
+                                ///< network, the less smoothed solve kept before the ladder's last
+                                ///< weight stays, closed or not, when the last's misfit is above
+                                ///< rounded_misfit and the kept one has no more handles, parts or
+                                ///< far area (rounded_far)
   double misfit_reach = 0.04;   ///< strokes within this (fraction of diagonal) are neighbours
   double miss_distance = 0.02; ///< a stroke point farther than this from the proxy (fraction of
                                ///< diagonal) counts as missed (report: missed_strokes)
@@ -247,9 +251,10 @@ struct ProxyReport {
   double crossing_gap = -1.0;     ///< automatic proxy: the strokes' median distance where they
                                   ///< cross (fraction of diagonal; < 0: too few crossings)
   double shared_misfit = 0.0;     ///< automatic proxy: the ladder's second weight's misfit shared
-                                  ///< between neighbouring strokes (misfit.h; 0: not measured)
-  bool rounded = false;           ///< automatic proxy: ... above rounded_misfit, and the first
-                                  ///< weight was kept instead
+                                  ///< between neighbouring strokes (a clean network's: its last
+                                  ///< weight's; misfit.h; 0: not measured)
+  bool rounded = false;           ///< automatic proxy: ... above rounded_misfit, and a less
+                                  ///< smoothed solve was kept instead
   double far_area = 0.0;          ///< automatic proxy: area fraction of the kept solve's surface
                                   ///< (or of the loft) farther than far_distance from every stroke
   double missed_strokes = 0.0;    ///< automatic proxy: fraction of the stroke points farther than

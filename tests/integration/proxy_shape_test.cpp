@@ -278,6 +278,26 @@ TEST(ProxyShape, ACleanNetworksBodyFollowsItsStrokesBetweenTheSamples) {
   EXPECT_GT(s.accuracy.median, 1.5 * e.accuracy.median);
 }
 
+// A cup's clean network: no weight below the ladder's last closes its zero set (the rim is open),
+// and the last (1e-3) rounds the cup off its strokes; the less smoothed solve, whose surface past
+// the rim the strokes' neighbourhood confines as well, is kept, about twice as near the truth.
+TEST(ProxyShape, ACleanCupIsNotRoundedOffItsStrokes) {
+  const TriMesh& truth = testing::truth_shape("cup").mesh;
+  const Made m = proxy_of("cup");
+  EXPECT_TRUE(m.report.rounded);
+  EXPECT_LT(m.report.lambda, ProxyOptions{}.lambda_max);
+  EXPECT_EQ(m.topology.genus, 0);
+  EXPECT_EQ(m.topology.components, 1u);
+  expect_within_strokes(m, 0.02);
+  const Evaluation e = evaluate(m.proxy, truth);
+  EXPECT_LT(e.accuracy.median, 0.00016);
+  ProxyOptions smooth;
+  smooth.rounded_misfit = 1.0;
+  const Made s = proxy_of("cup", {}, smooth);
+  EXPECT_EQ(s.report.lambda, ProxyOptions{}.lambda_max);
+  EXPECT_GT(evaluate(s.proxy, truth).accuracy.median, 1.5 * e.accuracy.median);
+}
+
 // A wedge's slope is a face that the strokes draw, at no axis: it is cut on its strokes as the
 // box's sides are, and no bulb hangs past the acute edge. A mug's supporting planes only touch
 // its round body, along short arcs of its strokes: none is a drawn face.
