@@ -1156,11 +1156,15 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // (clean_points), is kept instead when its zero set closes too with no more handles (each with
   // its undrawn windows closed), parts or surface far from every stroke: less smoothing there
   // follows the shape, not the tremor.
+  // Whether the less smoothed `least` frames no more handles, parts or far surface than `c`.
+  const auto frames_no_more = [&](const Candidate& least, const Candidate& c) {
+    return least.mesh.F.rows() > 0 && least.genus <= c.genus && least.components == c.components &&
+           least.far <= c.far + options.rounded_far;
+  };
   const auto holds_as_well = [&](Candidate& least, Candidate& c) {
     close_undrawn(least);
     close_undrawn(c);
-    return least.mesh.F.rows() > 0 && least.vipss->summary.closed && least.genus <= c.genus &&
-           least.components == c.components && least.far <= c.far + options.rounded_far;
+    return least.vipss->summary.closed && frames_no_more(least, c);
   };
   for (std::size_t i = ladder.size() > 1 && !clean ? 1 : 0; i < ladder.size(); ++i) {
     Candidate c = solve(ladder[i], i == 0 && dense.rows() > 0 ? dense : samples, nullptr);
@@ -1182,8 +1186,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     // A clean network's strokes lie on the surface: where the ladder's last weight rounds the shape
     // off them, the less smoothed solve already kept stays when it frames no more handles, parts or
     // far surface, closed or not (an open cup's rim confined by the strokes' neighbourhood).
-    if (clean && i + 1 == ladder.size() && i > 0 && c.mesh.F.rows() > 0 && kept.mesh.F.rows() > 0 &&
-        kept.genus <= c.genus && kept.components == c.components && kept.far <= c.far + options.rounded_far &&
+    if (clean && i + 1 == ladder.size() && i > 0 && c.mesh.F.rows() > 0 && frames_no_more(kept, c) &&
         options.rounded_misfit < 1.0) {
       r.shared_misfit = misfit_of(c);
       if (r.shared_misfit > options.rounded_misfit) {
