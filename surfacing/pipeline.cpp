@@ -199,6 +199,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"extract.unfold_max_share", setter([](Params& p) -> auto& { return p.extract.unfold.max_share; })},
       {"extract.unfold_refit_share", setter([](Params& p) -> auto& { return p.extract.unfold.refit_share; })},
       {"extract.unfold_hold_fit", setter([](Params& p) -> auto& { return p.extract.unfold.hold_fit; })},
+      {"extract.unfold_zone_share", setter([](Params& p) -> auto& { return p.extract.unfold.zone_share; })},
       {"extract.face_share", setter([](Params& p) -> auto& { return p.extract.face_share; })},
       {"extract.max_iterations", setter([](Params& p) -> auto& { return p.extract.energy.max_iterations; })},
       {"extract.lbfgs_rank", setter([](Params& p) -> auto& { return p.extract.energy.lbfgs_rank; })},

@@ -99,11 +99,13 @@ StrokeSegments surface_strokes(const Sketch& sketch) {
 }
 
 // E_mesh solved from the seamed proxy (its positions `start_positions`) with the regions flagged
-// kRegionHeld in `at_proxy` held there and those flagged kRegionPulled pulled toward it, then its
-// folds ironed out (unfold.h). `held` receives the held vertices, `folds` the crossing face pairs
-// left; `summary` the solve's, the back sides' and the unfold's figures.
+// kRegionHeld in `at_proxy` held there, and the vertices flagged in `zone` (empty: none), and
+// those flagged kRegionPulled pulled toward it, then its folds ironed out (unfold.h). `held`
+// receives the held vertices, `folds` the crossing face pairs left; `summary` the solve's, the back
+// sides' and the unfold's figures.
 void solve_held(LabeledMesh& seamed, const std::vector<ImplicitModel>& models, const MeshConstraints& base,
-                const std::vector<char>& at_proxy, const Eigen::MatrixX3d& start_positions,
+                const std::vector<char>& at_proxy, const std::vector<char>& zone,
+                const Eigen::MatrixX3d& start_positions,
                 const std::vector<std::uint8_t>& on_plane, double diagonal, const ExtractOptions& options,
                 const Progress& progress, std::vector<char>& held, ExtractSummary& summary,
                 std::vector<std::array<int, 2>>& folds) {
@@ -113,7 +115,8 @@ void solve_held(LabeledMesh& seamed, const std::vector<ImplicitModel>& models, c
   for (const AttractTarget& target : c.attract) attracted[target.vertex] = 1;
   for (auto v : seamed.mesh.vertices()) {
     const auto& l = seamed.labels[v.idx()];
-    held[v.idx()] = std::any_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] == kRegionHeld; });
+    held[v.idx()] = (!zone.empty() && zone[v.idx()]) ||
+                    std::any_of(l.begin(), l.end(), [&](int r) { return at_proxy[r] == kRegionHeld; });
     if (attracted[v.idx()]) continue;  // an open border follows its strokes
     if (held[v.idx()]) {
       c.held.push_back(v.idx());
@@ -258,7 +261,7 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
                        options.smooth_fallback, options.energy, &summary.smooth_fallback);
   std::vector<char> held;
   std::vector<std::array<int, 2>> folds;
-  solve_held(seamed, models, constraints, at_proxy, start_positions, on_plane, diagonal, options, progress,
+  solve_held(seamed, models, constraints, at_proxy, {}, start_positions, on_plane, diagonal, options, progress,
              held, summary, folds);
   // A fold the fills leave is a region's model running through another's surface over more than
   // a fill can span. The mesh is solved again from the start with other models or holds (the
@@ -281,12 +284,12 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
     };
     Solve kept{vertex_matrix(seamed.mesh), summary, held, at_proxy, folds, models};
     const auto try_solve = [&](std::vector<ImplicitModel> with, std::vector<char> at,
-                               const SmoothFallbackSummary& fallback) {
+                               const SmoothFallbackSummary& fallback, const std::vector<char>& zone = {}) {
       set_vertex_matrix(seamed.mesh, start_positions);
       Solve next{Eigen::MatrixX3d(), summary, {}, std::move(at), {}, std::move(with)};
       next.summary.smooth_fallback = fallback;
-      solve_held(seamed, next.models, constraints, next.at_proxy, start_positions, on_plane, diagonal, options,
-                 progress, next.held, next.summary, next.folds);
+      solve_held(seamed, next.models, constraints, next.at_proxy, zone, start_positions, on_plane, diagonal,
+                 options, progress, next.held, next.summary, next.folds);
       const StrokeDistance next_fit = fit();
       const bool better = next.folds.size() < kept.folds.size() &&
                           next_fit.median <= options.unfold.hold_fit * first_fit.median &&
@@ -330,6 +333,23 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
         kept.summary.unfold.held_regions = count;
         kept.summary.unfold.refitted_regions = refitted;
         kept.summary.unfold.refit_degree = degree;
+      }
+    }
+    // Where that is refused too (the proxy of a whole region is farther from its strokes), the
+    // triangles still crossing, with the fills' rings round them, held at the proxy when they are
+    // few: a lower-degree model's surface that runs a little past another region's where they meet
+    // (a shoe's flat sole under its sides), where the proxy is as good a surface. Not a whole
+    // part's worth: the proxy there is the shape of a blob, not of the strokes.
+    if (!kept.folds.empty()) {
+      const UnfoldSummary before = kept.summary.unfold;
+      const std::vector<char> zone = around(seamed.mesh, kept.folds, options.unfold.rings);
+      const auto size = static_cast<double>(std::count(zone.begin(), zone.end(), 1));
+      if (size <= options.unfold.zone_share * static_cast<double>(zone.size()) &&
+          try_solve(kept.models, kept.at_proxy, kept.summary.smooth_fallback, zone)) {
+        kept.summary.unfold.held_regions = before.held_regions;
+        kept.summary.unfold.refitted_regions = before.refitted_regions;
+        kept.summary.unfold.refit_degree = before.refit_degree;
+        kept.summary.unfold.held_zone = static_cast<std::size_t>(size);
       }
     }
     set_vertex_matrix(seamed.mesh, kept.positions);

@@ -28,6 +28,10 @@ bool UnfoldOptions::valid(std::string* why) const {
     if (why) *why = "extract.unfold_hold_fit must be >= 0";
     return false;
   }
+  if (!(zone_share >= 0.0 && zone_share <= 1.0)) {
+    if (why) *why = "extract.unfold_zone_share must be in [0, 1]";
+    return false;
+  }
   return true;
 }
 
@@ -61,22 +65,6 @@ std::vector<std::array<int, 2>> new_crossings(const TriMesh& mesh, const Eigen::
   out.insert(out.end(), kept.begin(), kept.end());
   std::inplace_merge(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(middle), out.end());
   return out;
-}
-
-// The vertices of the crossing triangles, grown by `rings` rings.
-std::vector<char> around(const TriMesh& mesh, const std::vector<std::array<int, 2>>& crossing, int rings) {
-  std::vector<char> in(mesh.n_vertices(), 0);
-  for (const auto& pair : crossing)
-    for (int f : pair)
-      for (auto v : mesh.fv_range(mesh.face_handle(f))) in[v.idx()] = 1;
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> grown = in;
-    for (auto v : mesh.vertices())
-      if (in[v.idx()])
-        for (auto u : mesh.vv_range(v)) grown[u.idx()] = 1;
-    in = std::move(grown);
-  }
-  return in;
 }
 
 // Drops from `zone` its connected parts of more than `most` vertices, and those that touch a part
@@ -183,6 +171,21 @@ void fill_zone(TriMesh& mesh, const std::vector<char>& zone, const std::vector<s
 }
 
 }  // namespace
+
+std::vector<char> around(const TriMesh& mesh, const std::vector<std::array<int, 2>>& crossing, int rings) {
+  std::vector<char> in(mesh.n_vertices(), 0);
+  for (const auto& pair : crossing)
+    for (int f : pair)
+      for (auto v : mesh.fv_range(mesh.face_handle(f))) in[v.idx()] = 1;
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> grown = in;
+    for (auto v : mesh.vertices())
+      if (in[v.idx()])
+        for (auto u : mesh.vv_range(v)) grown[u.idx()] = 1;
+    in = std::move(grown);
+  }
+  return in;
+}
 
 UnfoldSummary unfold(TriMesh& mesh, const Eigen::MatrixX3d& start, const std::vector<std::uint8_t>& fixed,
                      const UnfoldOptions& options, unsigned threads, std::vector<std::array<int, 2>>* left) {

@@ -41,6 +41,11 @@ struct UnfoldOptions {
                             ///< the proxy and the mesh solved again (extract()), kept when it
                             ///< has fewer folds and its stroke distance median and 95th
                             ///< percentile are each at most this times the first's; 0 = off
+  double zone_share = 0.05;  ///< where folds are still left then, the crossing triangles and
+                             ///< `rings` rings round them are held at the proxy and the mesh
+                             ///< solved again (extract(), under hold_fit's test), when that zone
+                             ///< has at most this share of the mesh's vertices (a few folds where
+                             ///< regions meet, not a whole part); 0 = off
   bool valid(std::string* why = nullptr) const;
 };
 
@@ -57,7 +62,13 @@ struct UnfoldSummary {
   int refit_degree = 0;            ///< ... the degree they were fitted at (0: none kept)
   std::size_t held_regions = 0;    ///< regions held at the proxy for the folds left (extract()):
                                    ///< the figures above are then the second solve's
+  std::size_t held_zone = 0;       ///< vertices round the folds still left held at the proxy
+                                   ///< (extract()): the figures above are then that solve's
 };
+
+/// Per vertex of `mesh`, 1 for the vertices of the `crossing` face pairs' triangles and those
+/// within `rings` rings of them.
+std::vector<char> around(const TriMesh& mesh, const std::vector<std::array<int, 2>>& crossing, int rings);
 
 /// Irons out the folds of `mesh` (see the file comment): the triangles that cross at the mesh's
 /// positions but not at `start` (its positions before the solve, one row per vertex). Vertices

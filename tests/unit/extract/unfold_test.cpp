@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "surfacing/extract/unfold.h"
@@ -108,6 +109,22 @@ TEST(Unfold, FixedVerticesKeepTheirPositionsAndOffMeansNothingMoves) {
   for (auto v : off.mesh.vertices()) {
     EXPECT_EQ(off.mesh.point(v), before.point(v));
   }
+}
+
+TEST(Unfold, TheZoneRoundCrossingTrianglesIsTheirVerticesAndTheRingsRoundThem) {
+  // Two triangles of the spike that share no vertex: their six vertices, then each ring adds
+  // exactly the neighbours of the vertices before it.
+  Spike spike;
+  const std::vector<std::array<int, 2>> pair = {{0, static_cast<int>(spike.mesh.n_faces()) - 1}};
+  const std::vector<char> own = around(spike.mesh, pair, 0);
+  EXPECT_EQ(std::count(own.begin(), own.end(), 1), 6);
+  std::vector<char> expected = own;
+  for (auto v : spike.mesh.vertices())
+    if (own[v.idx()])
+      for (auto u : spike.mesh.vv_range(v)) expected[u.idx()] = 1;
+  EXPECT_EQ(around(spike.mesh, pair, 1), expected);
+  const std::vector<char> two = around(spike.mesh, pair, 2);
+  EXPECT_GT(std::count(two.begin(), two.end(), 1), std::count(expected.begin(), expected.end(), 1));
 }
 
 }  // namespace
