@@ -934,10 +934,12 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // mesh's curves) lies on the surface, and is sampled more densely and smoothed less. Pairs of
   // strokes closer than kCrossReach (unit frame) are looked at, and those whose directions there
   // are more than kCrossAngle apart (radians) cross: any reach of a few tremor amplitudes will do.
-  constexpr double kCrossReach = 0.02, kCrossAngle = M_PI / 6.0;
-  r.crossing_gap =
-      crossing_gap(unit, kCrossReach, kCrossAngle, static_cast<std::size_t>(options.clean_crossings));
-  const bool clean = r.crossing_gap >= 0.0 && r.crossing_gap < options.clean_gap;
+  // Crossings where a stroke turns more than kCrossBend within that reach (a section across a
+  // crease) are left out: a polyline cuts the corner there, a network's too.
+  constexpr double kCrossReach = 0.02, kCrossAngle = M_PI / 6.0, kCrossBend = M_PI / 9.0;
+  r.crossing_gap = crossing_gap(unit, kCrossReach, kCrossAngle,
+                                static_cast<std::size_t>(options.clean_crossings), kCrossBend);
+  bool clean = r.crossing_gap >= 0.0 && r.crossing_gap < options.clean_gap;
 
   auto t0 = Clock::now();
   progress.update("sampling strokes", 0.0);
@@ -1166,8 +1168,31 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     close_undrawn(c);
     return least.vipss->summary.closed && frames_no_more(least, c);
   };
+  // A clean network's first solve with many more handles (far_extra_genus) than a drawn sketch's
+  // first (the ladder's second weight), its own undrawn windows closed: windows through a thin
+  // part's walls (an L-bracket's, two boxes' touching sides) drawn by a network's few sections,
+  // between which the nearly interpolating surface sinks through the part, not openings the
+  // strokes depict (a mug's handle, which the smoother solve may fill). The ladder then goes on as
+  // for a drawn sketch, from that solve.
+  std::optional<Candidate> ahead;  // the loop's first solve, made before it
+  if (clean && ladder.size() > 2) {
+    Candidate first = solve(ladder[0], dense, nullptr);
+    close_undrawn(first);
+    if (first.mesh.F.rows() > 0 && first.genus > 0) {
+      Candidate drawn = solve(ladder[2], samples, nullptr);
+      if (drawn.mesh.F.rows() > 0 && first.genus > drawn.genus + options.far_extra_genus) {
+        clean = false;
+        r.clean_windows = true;
+        ladder.erase(ladder.begin());
+        dense = Eigen::MatrixX3d();
+        ahead = std::move(drawn);
+      }
+    }
+    if (!ahead) ahead = std::move(first);
+  }
   for (std::size_t i = ladder.size() > 1 && !clean ? 1 : 0; i < ladder.size(); ++i) {
-    Candidate c = solve(ladder[i], i == 0 && dense.rows() > 0 ? dense : samples, nullptr);
+    Candidate c = ahead ? std::move(*ahead) : solve(ladder[i], i == 0 && dense.rows() > 0 ? dense : samples, nullptr);
+    ahead.reset();
     const bool closed = c.vipss->summary.closed;
     if (i == 1 && !clean && c.mesh.F.rows() > 0) {
       if (closed && options.rounded_misfit < 1.0)

@@ -250,6 +250,10 @@ struct ProxyReport {
   double lambda = 0.0;            ///< automatic proxy: the smoothing weight used
   double crossing_gap = -1.0;     ///< automatic proxy: the strokes' median distance where they
                                   ///< cross (fraction of diagonal; < 0: too few crossings)
+  bool clean_windows = false;     ///< automatic proxy: the strokes are a clean network (their
+                                  ///< crossing gap below clean_gap), but its first solve opened
+                                  ///< windows that a drawn sketch's did not (more than
+                                  ///< far_extra_genus handles more): smoothed as drawn
   double shared_misfit = 0.0;     ///< automatic proxy: the ladder's second weight's misfit shared
                                   ///< between neighbouring strokes (a clean network's: its last
                                   ///< weight's; misfit.h; 0: not measured)

@@ -97,7 +97,24 @@ double unmet_share(const Sketch& sketch, double reach, double angle) {
   return unmet / ink;
 }
 
-double crossing_gap(const Sketch& sketch, double reach, double angle, std::size_t least) {
+namespace {
+
+// How far stroke `p` turns about its piece `a` (pieces p[i]p[i+1]): the angle between its chords
+// from `reach` (arc length) before the piece to its end and from its start to `reach` after it
+// (chords, not pieces: a hand's tremor turns each short piece of its own).
+double turn_about(const std::vector<Eigen::Vector3d>& p, std::size_t a, double reach) {
+  std::size_t before = a, after = a + 1;
+  for (double arc = 0.0; before > 0 && arc < reach; --before) arc += (p[before] - p[before - 1]).norm();
+  for (double arc = 0.0; after + 1 < p.size() && arc < reach; ++after) arc += (p[after + 1] - p[after]).norm();
+  const Eigen::Vector3d u = p[a + 1] - p[before], v = p[after] - p[a];
+  const double n = u.norm() * v.norm();
+  if (!(n > 0.0)) return 0.0;
+  return std::acos(std::clamp(u.dot(v) / n, -1.0, 1.0));
+}
+
+}  // namespace
+
+double crossing_gap(const Sketch& sketch, double reach, double angle, std::size_t least, double bend) {
   if (!(reach > 0.0)) return -1.0;
   // Every segment split into pieces of at most reach / 2, points added on it and none moved: two
   // pieces within reach of each other then have end points within 1.5 reach.
@@ -145,7 +162,8 @@ double crossing_gap(const Sketch& sketch, double reach, double angle, std::size_
                                 (b == 0 && c.t == 0.0) || (b + 2 == q.size() && c.t == 1.0);
             const Eigen::Vector3d u = p[a + 1] - p[a], v = q[b + 1] - q[b];
             const bool across = std::abs(u.dot(v)) < most_aligned * u.norm() * v.norm();
-            it->second = Closest{c.distance, across && !at_end};
+            const bool straight = turn_about(p, a, reach) <= bend && turn_about(q, b, reach) <= bend;
+            it->second = Closest{c.distance, across && !at_end && straight};
           }
         }
         return false;

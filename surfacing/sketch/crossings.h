@@ -5,6 +5,7 @@
 // surface, so such a scene can be refused before any surfacing work; unlike the result's distance
 // to the strokes it does not change from one run to the next.
 
+#include <cmath>
 #include <cstddef>
 
 #include "surfacing/sketch/sketch.h"
@@ -19,11 +20,15 @@ namespace sketchsurf {
 double unmet_share(const Sketch& sketch, double reach, double angle);
 
 /// How far apart strokes pass where they cross: the median, over the pairs of strokes that come
-/// within `reach` of each other crosswise (directions there more than `angle` radians apart, and
-/// neither stroke ending there), of the pair's closest distance (same units as the sketch). A
-/// curve network drawn on a surface (a modelling tool's, a mesh's feature curves and sections)
-/// crosses exactly: its gaps are rounding; strokes drawn by hand pass each other by the hand's
-/// tremor. Negative when fewer than `least` pairs cross.
-double crossing_gap(const Sketch& sketch, double reach, double angle, std::size_t least);
+/// within `reach` of each other crosswise (directions there more than `angle` radians apart,
+/// neither stroke ending there, and neither turning more than `bend` radians within `reach` along
+/// it), of the pair's closest distance (same units as the sketch). A curve network drawn on a
+/// surface (a modelling tool's, a mesh's feature curves and sections) crosses exactly: its gaps are
+/// rounding; strokes drawn by hand pass each other by the hand's tremor. Where a network's curve
+/// turns at a crease, its polyline cuts the corner and passes the curve across it by the
+/// polyline's chord, not by any tremor: `bend` leaves such crossings out. Negative when fewer than
+/// `least` pairs cross.
+double crossing_gap(const Sketch& sketch, double reach, double angle, std::size_t least,
+                    double bend = M_PI);
 
 }  // namespace sketchsurf

@@ -135,6 +135,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                  {"genus", rep.proxy.topology.genus}, {"samples", rep.proxy.samples},
                  {"lambda", rep.proxy.lambda},
                  {"crossing_gap", rep.proxy.crossing_gap},
+                 {"clean_windows", rep.proxy.clean_windows},
                  {"shared_misfit", rep.proxy.shared_misfit}, {"rounded", rep.proxy.rounded},
                  {"far_area", rep.proxy.far_area}, {"missed_strokes", rep.proxy.missed_strokes},
                  {"confine_radius", rep.proxy.confine_radius},

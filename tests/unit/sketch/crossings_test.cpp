@@ -82,5 +82,19 @@ TEST(Crossings, TheGapWhereStrokesCrossIsTheirDistanceThere) {
   EXPECT_LT(crossing_gap(sketch, kReach, kAngle, 3), 0.0);
 }
 
+TEST(Crossings, ACrossingWhereAStrokeTurnsACornerIsLeftOutWithABend) {
+  // A stroke along x that turns a right-angled corner at the origin, cut short as a polyline cuts a
+  // crease's corner, and a straight stroke across the cut at right angles, 0.004 above it. Without
+  // a bend limit that is the gap; with one, the crossing is left out (the first stroke turns 90
+  // degrees within the reach), and a crossing of straight strokes is not.
+  Sketch corner;
+  Stroke turning;
+  turning.points = {V3(-1, 0, 0), V3(-0.003, 0, 0), V3(0, 0.003, 0), V3(0, 1, 0)};
+  corner.strokes = {turning, two_point_stroke(V3(-1, 1, 0.004), V3(1, -1, 0.004))};
+  EXPECT_NEAR(crossing_gap(corner, kReach, kAngle, 1), 0.004, 1e-12);
+  EXPECT_LT(crossing_gap(corner, kReach, kAngle, 1, M_PI / 9.0), 0.0);
+  EXPECT_NEAR(crossing_gap(crossing_pair(0.004, 0.3), kReach, kAngle, 1, M_PI / 9.0), 0.004, 1e-12);
+}
+
 }  // namespace
 }  // namespace sketchsurf
