@@ -290,6 +290,12 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
       next.summary.smooth_fallback = fallback;
       solve_held(seamed, next.models, constraints, next.at_proxy, zone, start_positions, on_plane, diagonal,
                  options, progress, next.held, next.summary, next.folds);
+      // What the kept solve was made with carries over; the caller adds what this one adds.
+      UnfoldSummary& unfold = next.summary.unfold;
+      unfold.refitted_regions = kept.summary.unfold.refitted_regions;
+      unfold.refit_degree = kept.summary.unfold.refit_degree;
+      unfold.held_regions = kept.summary.unfold.held_regions;
+      unfold.held_zone = kept.summary.unfold.held_zone;
       const StrokeDistance next_fit = fit();
       const bool better = next.folds.size() < kept.folds.size() &&
                           next_fit.median <= options.unfold.hold_fit * first_fit.median &&
@@ -327,13 +333,8 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
         at[static_cast<std::size_t>(r)] = kRegionHeld;
       const auto count = static_cast<std::size_t>(std::count(at.begin(), at.end(), kRegionHeld) -
                                                   std::count(kept.at_proxy.begin(), kept.at_proxy.end(), kRegionHeld));
-      const std::size_t refitted = kept.summary.unfold.refitted_regions;
-      const int degree = kept.summary.unfold.refit_degree;
-      if (count > 0 && try_solve(kept.models, std::move(at), kept.summary.smooth_fallback)) {
+      if (count > 0 && try_solve(kept.models, std::move(at), kept.summary.smooth_fallback))
         kept.summary.unfold.held_regions = count;
-        kept.summary.unfold.refitted_regions = refitted;
-        kept.summary.unfold.refit_degree = degree;
-      }
     }
     // Where that is refused too (the proxy of a whole region is farther from its strokes), the
     // triangles still crossing, with the fills' rings round them, held at the proxy when they are
@@ -341,16 +342,11 @@ ExtractedSurface extract(const TriMesh& proxy, const std::vector<int>& labels,
     // (a shoe's flat sole under its sides), where the proxy is as good a surface. Not a whole
     // part's worth: the proxy there is the shape of a blob, not of the strokes.
     if (!kept.folds.empty()) {
-      const UnfoldSummary before = kept.summary.unfold;
       const std::vector<char> zone = around(seamed.mesh, kept.folds, options.unfold.rings);
       const auto size = static_cast<double>(std::count(zone.begin(), zone.end(), 1));
       if (size <= options.unfold.zone_share * static_cast<double>(zone.size()) &&
-          try_solve(kept.models, kept.at_proxy, kept.summary.smooth_fallback, zone)) {
-        kept.summary.unfold.held_regions = before.held_regions;
-        kept.summary.unfold.refitted_regions = before.refitted_regions;
-        kept.summary.unfold.refit_degree = before.refit_degree;
+          try_solve(kept.models, kept.at_proxy, kept.summary.smooth_fallback, zone))
         kept.summary.unfold.held_zone = static_cast<std::size_t>(size);
-      }
     }
     set_vertex_matrix(seamed.mesh, kept.positions);
     summary = kept.summary;

@@ -162,8 +162,9 @@ double crossing_gap(const Sketch& sketch, double reach, double angle, std::size_
                                 (b == 0 && c.t == 0.0) || (b + 2 == q.size() && c.t == 1.0);
             const Eigen::Vector3d u = p[a + 1] - p[a], v = q[b + 1] - q[b];
             const bool across = std::abs(u.dot(v)) < most_aligned * u.norm() * v.norm();
-            const bool straight = turn_about(p, a, reach) <= bend && turn_about(q, b, reach) <= bend;
-            it->second = Closest{c.distance, across && !at_end && straight};
+            // The turns are looked at only for a crossing (the walks along both strokes).
+            it->second = Closest{c.distance, across && !at_end && turn_about(p, a, reach) <= bend &&
+                                                 turn_about(q, b, reach) <= bend};
           }
         }
         return false;
