@@ -20,6 +20,7 @@
 #include "surfacing/parallel.h"
 #include "surfacing/portable_math.h"
 #include "surfacing/proxy/attract.h"
+#include "surfacing/proxy/face_holes.h"
 #include "surfacing/proxy/loft.h"
 #include "surfacing/proxy/misfit.h"
 #include "surfacing/proxy/part_normals.h"
@@ -863,6 +864,8 @@ bool ProxyOptions::valid(std::string* why) const {
     return fail("proxy window_value must be in [0, 0.5)");
   if (!(window_undrawn >= 0.0 && window_undrawn < 0.5))
     return fail("proxy window_undrawn must be in [0, 0.5)");
+  if (!(face_hole_thickness >= 0.0 && face_hole_thickness <= 0.2))
+    return fail("proxy face_hole_thickness must be in [0, 0.2]");
   if (!(window_reach >= 0.0 && window_reach <= 2.0))
     return fail("proxy window_reach must be in [0, 2]");
   if (!(window_points >= 0 && window_points <= 100000))
@@ -1308,16 +1311,18 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     return std::find(beyond.begin(), beyond.end(), 1) != beyond.end();
   };
   // The kept solve's field changed by `change` (a further cut) and polygonised again; kept when
-  // that adds no handle and splits nothing. Returns whether it was kept.
-  const auto try_cut = [&](auto&& change) {
+  // that adds no handle (with `fewer_handles`: removes one or more) and splits nothing. Returns
+  // whether it was kept.
+  const auto try_cut = [&](auto&& change, bool fewer_handles = false) {
     const auto t = Clock::now();
     auto cut = std::make_unique<ConfinedField>(*kept.field);
     change(*cut);
     TriangleArrays mesh;
     GridMemo cut_caps(box.min, options.cell);
     const MeshTopology topology = polygonise(*cut, cut_caps, *kept.rbf, mesh, kept.evaluations);
-    const bool keep =
-        mesh.F.rows() > 0 && topology.genus <= kept.genus && topology.components <= kept.components;
+    const bool keep = mesh.F.rows() > 0 &&
+                      (fewer_handles ? topology.genus < kept.genus : topology.genus <= kept.genus) &&
+                      topology.components <= kept.components;
     if (keep) {
       kept.field = std::move(cut);
       kept.mesh = std::move(mesh);
@@ -1425,6 +1430,33 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       r.planes_drawn_in = planes.size();
       for (const Plane& face : moved_out(*margin)) drawn.push_back(face);
     }
+  // Holes that the faces drawn in cut through the surface where it dips through them (a glass's
+  // thin foot, its top below its drawn bottom between the strokes across it), closed by a membrane
+  // on the face where no stroke depicts an opening there (face_holes.h).
+  if (options.face_hole_thickness > 0.0 && kept.genus > 0 && !drawn.empty()) {
+    const auto t = Clock::now();
+    FaceHoleSearch search_holes;
+    search_holes.step = options.cell;
+    search_holes.thickness = options.face_hole_thickness;
+    const ConfinedField& field = *kept.field;
+    const auto g = [&](const Eigen::Vector3d& p) {
+      Eigen::Vector3d step;
+      return field.value(p, &step);
+    };
+    FaceHoles holes;
+    for (const Plane& face : drawn) {
+      FaceHoles more = face_holes(g, face, strokes_box, unit, stroke_grid, search_holes, threads);
+      holes.holes += more.holes;
+      holes.membranes.insert(holes.membranes.end(), more.membranes.begin(), more.membranes.end());
+    }
+    r.polygonize_seconds += seconds_since(t);
+    if (holes.holes > 0 && try_cut([&](ConfinedField& cut) {
+          std::vector<Bump> all = cut.bumps();
+          all.insert(all.end(), holes.membranes.begin(), holes.membranes.end());
+          cut.set_bumps(std::move(all));
+        }, true))
+      r.face_holes = holes.holes;
+  }
   r.lambda = kept.lambda;
   r.samples = kept.samples;
   r.windows = kept.windows;

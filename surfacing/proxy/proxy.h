@@ -164,6 +164,12 @@ struct ProxyOptions {
                                  ///< round it (a mug's floor between sparse strokes). Tried on
                                  ///< the solve the ladder keeps, kept only when it removes
                                  ///< handles and splits nothing
+  double face_hole_thickness = 0.03;  ///< where a face drawn in cuts holes through the surface
+                                      ///< (a glass's thin foot whose top dips below its drawn
+                                      ///< bottom), the holes that no stroke depicts (face_holes.h)
+                                      ///< are closed by a membrane this thick inside the face
+                                      ///< (fraction of diagonal; 0 = off); kept when that removes
+                                      ///< handles and splits nothing
   double bridge_value = 0.025;  ///< gaps between two parts of the surface that nearly touch
                                 ///< (saddles of the distance-scaled VIPSS function with a value in
                                 ///< (0, bridge_value), a maximum along the gap and a minimum
@@ -275,6 +281,7 @@ struct ProxyReport {
   std::size_t windows = 0;        ///< automatic proxy: membrane bumps closing windows
   std::size_t bridges = 0;        ///< automatic proxy: gaps bridged
   std::size_t necks = 0;          ///< automatic proxy: necks cut
+  std::size_t face_holes = 0;     ///< automatic proxy: holes through faces drawn in, closed
   std::size_t part_normals = 0;   ///< automatic proxy: normals kept from thin parts' strokes (0:
                                   ///< none, or that solve was not kept)
   std::size_t vipss_solves = 0;   ///< automatic proxy: smoothing weights tried

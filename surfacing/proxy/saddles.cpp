@@ -285,8 +285,8 @@ void flood_window(const SearchGrid& grid, const Saddle& s, const SaddleSearch& s
   }
 }
 
-// The strokes round a window-shaped saddle, within `reach` of it, seen along its across axis (the
-// opening's axis) and split into 12 equal sectors round it.
+// The strokes within `reach` of `centre`, seen along `axes`' third column (an opening's axis) and
+// split into 12 equal sectors round it.
 struct AroundSaddle {
   bool winds = false;  ///< one stroke turns at least kDepictedTurn round the axis
   int sectors = 0;     ///< sectors that hold a stroke
@@ -295,8 +295,9 @@ struct AroundSaddle {
 
 constexpr double kDepictedTurn = 3.5;
 
-AroundSaddle strokes_around(const Saddle& s, const Sketch& unit, double reach) {
-  const Eigen::Vector3d axis = s.axes.col(2), u = s.axes.col(0), v = s.axes.col(1);
+AroundSaddle strokes_around(const Eigen::Vector3d& centre, const Eigen::Matrix3d& axes,
+                            const Sketch& unit, double reach) {
+  const Eigen::Vector3d axis = axes.col(2), u = axes.col(0), v = axes.col(1);
   const auto angle_of = [&](const Eigen::Vector3d& d) { return portable::atan2(d.dot(v), d.dot(u)); };
   const auto sector_of = [&](const Eigen::Vector3d& d) {
     return std::min(11, static_cast<int>((angle_of(d) + M_PI) / (2.0 * M_PI) * 12.0));
@@ -307,7 +308,7 @@ AroundSaddle strokes_around(const Saddle& s, const Sketch& unit, double reach) {
     if (stroke.ignored) continue;
     double turn = 0.0;  // along the current stretch of the stroke within reach
     for (std::size_t i = 1; i < stroke.points.size(); ++i) {
-      const Eigen::Vector3d a = stroke.points[i - 1] - s.centre, b = stroke.points[i] - s.centre;
+      const Eigen::Vector3d a = stroke.points[i - 1] - centre, b = stroke.points[i] - centre;
       if (a.norm() > reach || b.norm() > reach) {
         turn = 0.0;
         continue;
@@ -344,7 +345,7 @@ constexpr int kWallSectors = 7;
 bool undrawn_window(const Saddle& s, const Sketch& unit, const PointGrid& strokes) {
   const double nearest = std::sqrt(strokes.nearest(s.centre).second);
   if (nearest > kSpanned * s.value) return false;
-  const AroundSaddle around = strokes_around(s, unit, 2.0 * nearest);
+  const AroundSaddle around = strokes_around(s.centre, s.axes, unit, 2.0 * nearest);
   return around.sectors >= kSurrounded && !around.winds && around.along < kWallSectors;
 }
 
@@ -411,6 +412,16 @@ bool neck_cut(const Saddle& s, double h, const Sketch& unit, Bump& out) {
 }
 
 }  // namespace
+
+bool opening_drawn(const Eigen::Vector3d& centre, const Eigen::Vector3d& axis, double reach,
+                   const Sketch& unit) {
+  Eigen::Matrix3d axes;
+  axes.col(2) = axis.normalized();
+  axes.col(0) = axes.col(2).unitOrthogonal();
+  axes.col(1) = axes.col(2).cross(axes.col(0));
+  const AroundSaddle around = strokes_around(centre, axes, unit, reach);
+  return around.winds || around.along >= kWallSectors;
+}
 
 Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>& lowered,
                      const Sketch& unit, const PointGrid& strokes, const BoundingBox& box,

@@ -48,6 +48,14 @@ struct SaddleSearch {
   double neck_most = 0.0;      ///< necks: saddle values in (-neck_most, 0); 0 = none
 };
 
+/// Whether the strokes of `unit` within `reach` of `centre` depict an opening along `axis` there:
+/// one turns at least 3.5 radians round the axis within that reach (a hole's drawn rim, a
+/// handle's C, a torus's inner circle), or those running within 45 degrees of the axis stand in 7
+/// or more of 12 sectors round it (a bore drawn by its wall's lines). The strokes that frame a face
+/// or a wall pass by a point of it.
+bool opening_drawn(const Eigen::Vector3d& centre, const Eigen::Vector3d& axis, double reach,
+                   const Sketch& unit);
+
 /// What find_saddles() found, as bumps to lower the field by.
 struct Saddles {
   std::vector<Bump> windows;  ///< membranes over windows through thin double walls

@@ -143,7 +143,7 @@ nlohmann::json report_json(const SurfaceResult& r, const Params& p) {
                  {"planes_drawn_in", rep.proxy.planes_drawn_in},
                  {"loft_sections", rep.proxy.loft_sections},
                  {"window_bumps", rep.proxy.windows}, {"bridges", rep.proxy.bridges},
-                 {"necks_cut", rep.proxy.necks},
+                 {"necks_cut", rep.proxy.necks}, {"face_holes", rep.proxy.face_holes},
                  {"part_normals", rep.proxy.part_normals}}},
       {"extraction", {{"solver", ex.optimization.solver},
                       {"termination", ex.optimization.termination},
