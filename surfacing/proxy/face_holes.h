@@ -29,13 +29,14 @@ struct FaceHoles {
 
 /// The holes through `face` (its normal pointing out of the surface) in the surface g = 0 (g < 0
 /// inside; the surface cut on the face): on a grid of spacing h over the face within `extent`
-/// (the strokes' box), the points half a cell inside the face where g >= 0 that the points where
-/// g < 0 enclose (4-connected; those connected to the grid's edge are the space round the
-/// surface). A hole is left open where the strokes depict an opening round its centre
-/// (opening_drawn(), within twice the distance to the nearest stroke of `strokes`): a plate's
-/// drawn hole, a bore. The others get a membrane on the face: bumps every second grid point over
-/// the hole and the points next to it, `thickness` deep inside the face, that lower g by three
-/// times (the most g over the hole + h) at their centres.
+/// (the strokes' box), half a cell inside the face, the points where g >= 0 that the points
+/// where g < 0, grown by two grid points, enclose (4-connected; those connected to the grid's
+/// edge are the space round the surface; the growth closes a rim thinner than a cell round its
+/// hole). A hole is its enclosed points and the outside points within two of them. It is left
+/// open where the strokes depict an opening round its centre (opening_drawn(), within twice the
+/// distance to the nearest stroke of `strokes`): a plate's drawn hole, a bore. The others get a
+/// membrane on the face: a bump at each point of the hole, 1.5 h wide and `thickness` deep across
+/// the face, lowering g by twice (g there + h) at its centre.
 FaceHoles face_holes(const std::function<double(const Eigen::Vector3d&)>& g, const Plane& face,
                      const BoundingBox& extent, const Sketch& unit, const PointGrid& strokes,
                      const FaceHoleSearch& search, unsigned threads);
