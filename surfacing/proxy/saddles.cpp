@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <limits>
 #include <vector>
+#include <cstdio>
+#include <cstdlib>
 
 #include "surfacing/parallel.h"
 #include "surfacing/portable_math.h"
@@ -455,6 +457,7 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>&
     const bool undrawn = shaped && wider && undrawn_window(s, unit, strokes);
     const bool gap = s.value > 0.0 && s.value < search.bridge_most && s.curvature[0] < 0.0 &&
                      s.curvature[1] > 0.0;
+    if (std::getenv("SKS_DEBUG")) fprintf(stderr, "saddle (%.3f %.3f %.3f) v=%.4f curv %.2f %.2f %.2f narrow %d wider %d shaped %d undrawn %d gap %d open %d\n", s.centre.x(), s.centre.y(), s.centre.z(), s.value, s.curvature[0], s.curvature[1], s.curvature[2], narrow, wider, shaped, undrawn, gap, (int)open_across(grid, s.centre, s.axes.col(2), search.across, std::min(s.value, 0.0)));
     if (!window && !undrawn && !gap) continue;
     if (!take(s.centre)) continue;
     if (window || undrawn) {
