@@ -153,6 +153,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.window_undrawn", setter([](Params& p) -> auto& { return p.proxy.window_undrawn; })},
       {"proxy.window_reach", setter([](Params& p) -> auto& { return p.proxy.window_reach; })},
       {"proxy.window_points", setter([](Params& p) -> auto& { return p.proxy.window_points; })},
+      {"proxy.window_tight", setter([](Params& p) -> auto& { return p.proxy.window_tight; })},
       {"proxy.face_hole_thickness", setter([](Params& p) -> auto& { return p.proxy.face_hole_thickness; })},
       {"proxy.bridge_value", setter([](Params& p) -> auto& { return p.proxy.bridge_value; })},
       {"proxy.neck_value", setter([](Params& p) -> auto& { return p.proxy.neck_value; })},

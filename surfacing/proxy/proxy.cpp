@@ -999,6 +999,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     std::size_t samples = 0, components = 0, evaluations = 0;
     std::size_t windows = 0, bridges = 0, necks = 0;  // bumps kept
     std::vector<Bump> undrawn;  // membranes over the wider windows no stroke depicts, not applied
+    std::vector<Bump> tight;    // bumps over the windows whose space across does not open, not applied
   };
   // The strokes' part of every field without the outline cut: the same for every solve.
   auto caps = std::make_unique<GridMemo>(box.min, options.cell);
@@ -1036,7 +1037,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // built where that splits nothing (a bridge adds a handle or joins two parts); then necks cut
   // where that splits the surface or removes handles, adds none, and loses no part (at most
   // kNeckLoss of the area: more, and a part fell away as a speck).
-  enum class Kind { kWindows, kBridges, kNecks };
+  enum class Kind { kWindows, kTight, kBridges, kNecks };
   const auto try_bumps = [&](Candidate& c, MeshTopology& topology, const std::vector<Bump>& bumps,
                              Kind kind) {
     if (bumps.empty()) return false;
@@ -1053,7 +1054,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
           surface_area(mesh) < (1.0 - kNeckLoss) * surface_area(c.mesh))
         return false;
     } else if (with.components > topology.components ||
-               (kind == Kind::kWindows && with.genus >= topology.genus)) {
+               ((kind == Kind::kWindows || kind == Kind::kTight) && with.genus >= topology.genus) ||
+               (kind == Kind::kTight && with.components < topology.components)) {
       return false;
     }
     c.field = std::move(bumped);
@@ -1124,6 +1126,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       }
     }
     c.undrawn = saddles.undrawn;
+    c.tight = saddles.tight;
     if (try_bumps(c, topology, saddles.bridges, Kind::kBridges)) c.bridges = saddles.bridges.size();
     if (try_bumps(c, topology, saddles.necks, Kind::kNecks)) c.necks = saddles.necks.size();
     if (c.mesh.F.rows() > 0) {
@@ -1300,6 +1303,23 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // they would change the choice above, which weighs handles (a smoother solve that webs a chair's
   // back, its last window closed, would win over one that keeps the back open).
   close_undrawn(kept);
+  // Windows whose space across does not open (beside another face: a chair seat's underside by a
+  // leg) cannot be told from a gap between two faces by their saddles: closed on the kept solve
+  // only, all together, where that removes handles and neither splits nor joins parts (two boxes
+  // side by side stay apart).
+  if (options.window_tight && kept.genus > 0 && !kept.tight.empty()) {
+    const auto t = Clock::now();
+    MeshTopology topology;
+    topology.genus = kept.genus;
+    topology.components = kept.components;
+    if (try_bumps(kept, topology, kept.tight, Kind::kTight)) {
+      kept.windows += kept.tight.size();
+      kept.genus = topology.genus;
+      kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance, threads);
+    }
+    kept.tight.clear();
+    r.polygonize_seconds += seconds_since(t);
+  }
   // The outline cut, where the strokes frame a surface (a sketch whose surface lies mostly far
   // from every stroke, a flower's petals, is left whole: cut, it falls apart into pieces that no
   // longer show that it depicts no surface). Kept when it adds no handle and splits nothing.

@@ -164,6 +164,12 @@ struct ProxyOptions {
                                  ///< round it (a mug's floor between sparse strokes). Tried on
                                  ///< the solve the ladder keeps, kept only when it removes
                                  ///< handles and splits nothing
+  bool window_tight = true;     ///< windows whose space across does not open (a chair seat's
+                                ///< underside beside a leg; saddles with a value below
+                                ///< window_value that the windows' test refuses), with no
+                                ///< stroke depicting an opening there, are closed on the kept
+                                ///< solve, all together, where that removes handles and neither
+                                ///< splits nor joins parts
   double face_hole_thickness = 0.03;  ///< where a face drawn in cuts holes through the surface
                                       ///< (a glass's thin foot whose top dips below its drawn
                                       ///< bottom), the holes that no stroke depicts (face_holes.h)

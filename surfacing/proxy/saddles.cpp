@@ -8,8 +8,6 @@
 #include <cstddef>
 #include <limits>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 #include "surfacing/parallel.h"
 #include "surfacing/portable_math.h"
@@ -450,17 +448,21 @@ Saddles find_saddles(const HermiteRbf& f, double scale, const std::vector<Bump>&
       continue;
     const bool narrow = search.window_most > 0.0 && s.value < search.window_most;
     const bool wider = !narrow && s.value < search.window_undrawn_most;
-    const bool shaped = (narrow || wider) && s.curvature[1] < 0.0 && s.curvature[2] > 0.0 &&
-                        open_across(grid, s.centre, s.axes.col(2), search.across,
-                                    std::min(s.value, 0.0));
-    const bool window = shaped && narrow;
-    const bool undrawn = shaped && wider && undrawn_window(s, unit, strokes);
+    const bool curved = s.curvature[1] < 0.0 && s.curvature[2] > 0.0;
+    const bool open = curved && (narrow || wider) &&
+                      open_across(grid, s.centre, s.axes.col(2), search.across, std::min(s.value, 0.0));
+    const bool window = open && narrow;
+    const bool undrawn = open && wider && undrawn_window(s, unit, strokes);
+    const bool tight = curved && !open && narrow && s.value > 0.0 &&
+                       !opening_drawn(s.centre, s.axes.col(2),
+                                      2.0 * std::sqrt(strokes.nearest(s.centre).second), unit);
     const bool gap = s.value > 0.0 && s.value < search.bridge_most && s.curvature[0] < 0.0 &&
                      s.curvature[1] > 0.0;
-    if (std::getenv("SKS_DEBUG")) fprintf(stderr, "saddle (%.3f %.3f %.3f) v=%.4f curv %.2f %.2f %.2f narrow %d wider %d shaped %d undrawn %d gap %d open %d\n", s.centre.x(), s.centre.y(), s.centre.z(), s.value, s.curvature[0], s.curvature[1], s.curvature[2], narrow, wider, shaped, undrawn, gap, (int)open_across(grid, s.centre, s.axes.col(2), search.across, std::min(s.value, 0.0)));
-    if (!window && !undrawn && !gap) continue;
+    if (!window && !undrawn && !gap && !tight) continue;
     if (!take(s.centre)) continue;
-    if (window || undrawn) {
+    if (tight) {
+      found.tight.push_back(window_bump(s, h, 0.5 * search.across, search.window_aliased));
+    } else if (window || undrawn) {
       std::vector<Bump>& out = window ? found.windows : found.undrawn;
       out.push_back(window_bump(s, h, search.across, search.window_aliased));
       std::vector<Bump>& region = s.value > 0.0 ? out : found.thin;

@@ -62,6 +62,10 @@ struct Saddles {
   std::vector<Bump> undrawn;  ///< membranes over wider windows that no stroke depicts
   std::vector<Bump> thin;     ///< membranes over the thin strips round windows whose saddle lies
                               ///< just inside the surface (not their own bumps: in `windows`)
+  std::vector<Bump> tight;    ///< window bumps over window-shaped saddles below window_most
+                              ///< whose space across does not open (open_across: a window
+                              ///< beside another face, or a gap between two faces) and round
+                              ///< which no stroke depicts an opening (opening_drawn())
   std::vector<Bump> bridges;  ///< connections across gaps that strokes cross
   std::vector<Bump> necks;    ///< cuts through thin connections that no stroke crosses
 };

@@ -288,11 +288,17 @@ TEST(Surface, AWineglassNetsOpenBowlIsAtLeastAsAccurateAsItsProxy) {
 // hangs from the seat, framed by the legs and the seat but open below them. The proxy is cut back
 // nearer the strokes there, and solved again with the normals that the legs' strokes give (the
 // walls were the last run of the ground-truth suite past p99 2% and max 5%: 6.7% and 10.1%).
-TEST(Surface, AChairDrawnInVrHasNoWallBetweenItsLegs) {
+// Under the seat, beside the front leg, a window opens through the seat's underside whose space
+// across runs into the leg (no window by its saddle's open space, and no stroke depicts an
+// opening there): closed on the kept solve, the proxy and the chair have no handle.
+TEST(Surface, AChairDrawnInVrHasNoWallBetweenItsLegsNorAWindowUnderItsSeat) {
   const TriMesh truth = testing::truth_shape("chair").mesh;
   const SurfaceResult r = surfaced_vr_draw(truth, 3);
   EXPECT_EQ(r.report.proxy.confine_radius, Params().proxy.confine_near);
   EXPECT_GT(r.report.proxy.part_normals, 0u);
+  EXPECT_EQ(mesh_topology(r.proxy).genus, 0);
+  EXPECT_EQ(mesh_topology(r.mesh).genus, 0);
+  EXPECT_EQ(mesh_topology(r.mesh).components, 1u);
   const Evaluation eval = evaluate(r.mesh, truth);
   EXPECT_LT(eval.accuracy.p99, 0.02);
   EXPECT_LT(eval.accuracy.max, 0.05);
