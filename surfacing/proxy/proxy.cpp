@@ -1073,21 +1073,24 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       closed += found.thin.size();
     return closed;
   };
-  // The wider windows that no stroke depicts, closed where that removes handles (once).
-  const auto close_undrawn = [&](Candidate& c) {
-    if (c.genus == 0 || c.undrawn.empty()) return;
+  // Bumps a solve set aside (`bumps`, one of its own lists), closed where that removes handles
+  // (try_bumps' test for `kind`), once: the list is emptied.
+  const auto close_set_aside = [&](Candidate& c, std::vector<Bump>& bumps, Kind kind) {
+    if (c.genus == 0 || bumps.empty()) return;
     const auto t = Clock::now();
     MeshTopology topology;
     topology.genus = c.genus;
     topology.components = c.components;
-    if (try_bumps(c, topology, c.undrawn, Kind::kWindows)) {
-      c.windows += c.undrawn.size();
+    if (try_bumps(c, topology, bumps, kind)) {
+      c.windows += bumps.size();
       c.genus = topology.genus;
       c.far = far_fraction(c.mesh, stroke_grid, options.far_distance, threads);
     }
-    c.undrawn.clear();
+    bumps.clear();
     r.polygonize_seconds += seconds_since(t);
   };
+  // The wider windows that no stroke depicts, closed where that removes handles.
+  const auto close_undrawn = [&](Candidate& c) { close_set_aside(c, c.undrawn, Kind::kWindows); };
   const auto solve = [&](double lambda, const Eigen::MatrixX3d& at, const VipssStart* from) {
     auto t = Clock::now();
     Candidate c;
@@ -1307,19 +1310,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // leg) cannot be told from a gap between two faces by their saddles: closed on the kept solve
   // only, all together, where that removes handles and neither splits nor joins parts (two boxes
   // side by side stay apart).
-  if (options.window_tight && kept.genus > 0 && !kept.tight.empty()) {
-    const auto t = Clock::now();
-    MeshTopology topology;
-    topology.genus = kept.genus;
-    topology.components = kept.components;
-    if (try_bumps(kept, topology, kept.tight, Kind::kTight)) {
-      kept.windows += kept.tight.size();
-      kept.genus = topology.genus;
-      kept.far = far_fraction(kept.mesh, stroke_grid, options.far_distance, threads);
-    }
-    kept.tight.clear();
-    r.polygonize_seconds += seconds_since(t);
-  }
+  if (options.window_tight) close_set_aside(kept, kept.tight, Kind::kTight);
   // The outline cut, where the strokes frame a surface (a sketch whose surface lies mostly far
   // from every stroke, a flower's petals, is left whole: cut, it falls apart into pieces that no
   // longer show that it depicts no surface). Kept when it adds no handle and splits nothing.
