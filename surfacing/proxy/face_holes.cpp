@@ -52,7 +52,10 @@ FaceHoles face_holes(const std::function<double(const Eigen::Vector3d&)>& g, con
         for (int b = std::max(0, j - kBridge); b <= std::min(nv - 1, j + kBridge); ++b)
           for (int a = std::max(0, i - kBridge); a <= std::min(nu - 1, i + kBridge); ++a) grown[id(a, b)] = 1;
   std::vector<char> seen(value.size(), 0);
-  const auto flood = [&](int i0, int j0, const std::vector<char>& wall, std::vector<std::array<int, 2>>& out) {
+  std::vector<int> in_hole(value.size(), 0);  // the last hole (counted from 1) a point was put in
+  int hole_count = 0;
+  // Floods the points not in `grown` from (i0, j0) into `out`; whether it reached the grid's edge.
+  const auto flood = [&](int i0, int j0, std::vector<std::array<int, 2>>& out) {
     bool open = false;
     std::vector<std::array<int, 2>> stack{{i0, j0}};
     seen[id(i0, j0)] = 1;
@@ -63,7 +66,7 @@ FaceHoles face_holes(const std::function<double(const Eigen::Vector3d&)>& g, con
       open = open || i == 0 || j == 0 || i + 1 == nu || j + 1 == nv;
       for (const auto [di, dj] : {std::array{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
         const int a = i + di, b = j + dj;
-        if (a < 0 || b < 0 || a >= nu || b >= nv || seen[id(a, b)] || wall[id(a, b)]) continue;
+        if (a < 0 || b < 0 || a >= nu || b >= nv || seen[id(a, b)] || grown[id(a, b)]) continue;
         seen[id(a, b)] = 1;
         stack.push_back({a, b});
       }
@@ -74,15 +77,15 @@ FaceHoles face_holes(const std::function<double(const Eigen::Vector3d&)>& g, con
     for (int i0 = 0; i0 < nu; ++i0) {
       if (seen[id(i0, j0)] || grown[id(i0, j0)]) continue;
       std::vector<std::array<int, 2>> core;
-      if (flood(i0, j0, grown, core)) continue;
+      if (flood(i0, j0, core)) continue;
       // The hole: the points outside the surface within kBridge of its core.
-      std::vector<char> in_hole(value.size(), 0);
+      ++hole_count;
       std::vector<std::array<int, 2>> hole;
       for (const auto [i, j] : core)
         for (int b = std::max(0, j - kBridge); b <= std::min(nv - 1, j + kBridge); ++b)
           for (int a = std::max(0, i - kBridge); a <= std::min(nu - 1, i + kBridge); ++a)
-            if (value[id(a, b)] >= 0.0 && !in_hole[id(a, b)]) {
-              in_hole[id(a, b)] = 1;
+            if (value[id(a, b)] >= 0.0 && in_hole[id(a, b)] != hole_count) {
+              in_hole[id(a, b)] = hole_count;
               hole.push_back({a, b});
             }
       Eigen::Vector3d centre = Eigen::Vector3d::Zero();
