@@ -1154,10 +1154,13 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   std::vector<double> ladder = lambda_ladder(options);
   if (dense.rows() > 0) ladder.insert(ladder.begin(), options.clean_lambda);
   Candidate kept;
+  // Keeps `c` instead of `kept` unless `kept` has clearly less surface far from the strokes;
+  // returns the one not kept.
   const auto consider = [&](Candidate c) {
     const bool kept_better = kept.far + options.far_tie <= c.far && kept.far <= options.far_most &&
                              kept.genus <= c.genus + options.far_extra_genus;
-    if (kept.mesh.F.rows() == 0 || (c.mesh.F.rows() > 0 && !kept_better)) kept = std::move(c);
+    if (kept.mesh.F.rows() == 0 || (c.mesh.F.rows() > 0 && !kept_better)) std::swap(kept, c);
+    return c;
   };
   const auto misfit_of = [&](const Candidate& c) {
     return shared_misfit(c.vipss->function, misfit_points, misfit_strokes, options.misfit_reach, threads);
@@ -1184,6 +1187,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // strokes depict (a mug's handle, which the smoother solve may fill). The ladder then goes on as
   // for a drawn sketch, from that solve.
   std::optional<Candidate> ahead;  // the loop's first solve, made before it
+  std::optional<Candidate> clean_first;  // a clean network's first solve, once a smoother one replaced it
   if (clean && ladder.size() > 2) {
     Candidate first = solve(ladder[0], dense, nullptr);
     close_undrawn(first);
@@ -1218,17 +1222,22 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
       if (c.far >= options.far_tie) consider(solve(ladder[0], samples, nullptr));
     }
     // A clean network's strokes lie on the surface: where the ladder's last weight rounds the shape
-    // off them, the less smoothed solve already kept stays when it frames no more handles, parts or
-    // far surface, closed or not (an open cup's rim confined by the strokes' neighbourhood).
-    if (clean && i + 1 == ladder.size() && i > 0 && c.mesh.F.rows() > 0 && frames_no_more(kept, c) &&
-        options.rounded_misfit < 1.0) {
-      r.shared_misfit = misfit_of(c);
-      if (r.shared_misfit > options.rounded_misfit) {
-        r.rounded = true;
-        break;
+    // off them, the least smoothed solve that frames no more handles, parts or far surface stays,
+    // closed or not (an open cup's rim confined by the strokes' neighbourhood; a chair's legs,
+    // which every weight above the first webs a little more to the seat).
+    if (clean && i + 1 == ladder.size() && i > 0 && c.mesh.F.rows() > 0 && options.rounded_misfit < 1.0) {
+      Candidate* stays = clean_first && frames_no_more(*clean_first, c) ? &*clean_first : &kept;
+      if (frames_no_more(*stays, c)) {
+        r.shared_misfit = misfit_of(c);
+        if (r.shared_misfit > options.rounded_misfit) {
+          r.rounded = true;
+          if (stays != &kept) kept = std::move(*stays);
+          break;
+        }
       }
     }
-    consider(std::move(c));
+    Candidate out = consider(std::move(c));
+    if (clean && out.mesh.F.rows() > 0 && out.lambda == ladder[0]) clean_first = std::move(out);
     if (closed) break;
   }
   // A nearer confinement where the surface beyond it is mostly a web or a fin, not faces between

@@ -60,10 +60,10 @@ struct ProxyOptions {
                                 ///< or a box's rounded edges: 0.35-0.8; >= 1: never) ...
   double rounded_far = 0.005;   ///< ... and the first's is confined too, with no more handles or
                                 ///< parts, and far area at most this fraction more. On a clean
-                                ///< network, the less smoothed solve kept before the ladder's last
-                                ///< weight stays, closed or not, when the last's misfit is above
-                                ///< rounded_misfit and the kept one has no more handles, parts or
-                                ///< far area (rounded_far)
+                                ///< network, when the ladder's last weight's misfit is above
+                                ///< rounded_misfit, the least smoothed solve before it with no
+                                ///< more handles, parts or far area (rounded_far) stays, closed or
+                                ///< not
   double misfit_reach = 0.04;   ///< strokes within this (fraction of diagonal) are neighbours
   double miss_distance = 0.02; ///< a stroke point farther than this from the proxy (fraction of
                                ///< diagonal) counts as missed (report: missed_strokes)

@@ -54,7 +54,9 @@ TEST(PointGrid, NearestIsTheBruteForceNearestWithTiesToTheLowerIndex) {
       // finds_within: what the limited search says, and true for every point within the radius.
       const bool finds = grid.finds_within(p, radius);
       EXPECT_EQ(finds, grid.nearest(p, radius).first >= 0) << "query " << q << " radius " << radius;
-      if (expected.second <= radius * radius) EXPECT_TRUE(finds) << "query " << q << " radius " << radius;
+      if (expected.second <= radius * radius) {
+        EXPECT_TRUE(finds) << "query " << q << " radius " << radius;
+      }
     }
   }
 
