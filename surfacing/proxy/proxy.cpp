@@ -1226,8 +1226,10 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     // closed or not (an open cup's rim confined by the strokes' neighbourhood; a chair's legs,
     // which every weight above the first webs a little more to the seat).
     if (clean && i + 1 == ladder.size() && i > 0 && c.mesh.F.rows() > 0 && options.rounded_misfit < 1.0) {
-      Candidate* stays = clean_first && frames_no_more(*clean_first, c) ? &*clean_first : &kept;
-      if (frames_no_more(*stays, c)) {
+      Candidate* stays = clean_first && frames_no_more(*clean_first, c) ? &*clean_first
+                         : frames_no_more(kept, c)                         ? &kept
+                                                                           : nullptr;
+      if (stays) {
         r.shared_misfit = misfit_of(c);
         if (r.shared_misfit > options.rounded_misfit) {
           r.rounded = true;
@@ -1240,6 +1242,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     if (clean && out.mesh.F.rows() > 0 && out.lambda == ladder[0]) clean_first = std::move(out);
     if (closed) break;
   }
+  clean_first.reset();  // its field and meshes are not needed past the ladder
   // A nearer confinement where the surface beyond it is mostly a web or a fin, not faces between
   // drawn edges: a lamp's pole webbed to its base and shade is cut back to a tube round the pole.
   // Faces framed by strokes far apart (a box's sides, a shield, a chest's lid) would be pitted by
