@@ -142,6 +142,7 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.confine_box_tight", setter([](Params& p) -> auto& { return p.proxy.confine_box_tight; })},
       {"proxy.confine_box_span", setter([](Params& p) -> auto& { return p.proxy.confine_box_span; })},
       {"proxy.confine_box_partial", setter([](Params& p) -> auto& { return p.proxy.confine_box_partial; })},
+      {"proxy.overshoot", setter([](Params& p) -> auto& { return p.proxy.overshoot; })},
       {"proxy.outline_gap", setter([](Params& p) -> auto& { return p.proxy.outline_gap; })},
       {"proxy.outline_reach", setter([](Params& p) -> auto& { return p.proxy.outline_reach; })},
       {"proxy.outline_from", setter([](Params& p) -> auto& { return p.proxy.outline_from; })},

@@ -664,6 +664,75 @@ void for_each_run(std::size_t begin, std::size_t end, Point&& point, Inside&& in
   }
 }
 
+// The flat runs of `unit`'s strokes near their extreme along `n` (`extreme`, the largest n.p of
+// their points): runs of consecutive points whose depth below it is at most `band`, at least
+// `run_least` long, whose depth varies by at most `flat`; visit(stroke, i, j) for each run
+// stroke.points[i, j). Such runs are strokes drawn along a face there.
+template <typename Visit>
+void for_each_flat_run(const Sketch& unit, const Eigen::Vector3d& n, double extreme, double band, double run_least,
+                       double flat, Visit&& visit) {
+  for (const Stroke& stroke : unit.strokes) {
+    const auto depth = [&](std::size_t i) { return extreme - n.dot(stroke.points[i]); };
+    const auto point = [&](std::size_t i) -> const Eigen::Vector3d& { return stroke.points[i]; };
+    const auto inside = [&](std::size_t i) { return depth(i) <= band; };
+    for_each_run(0, stroke.points.size(), point, inside, [&](std::size_t i, std::size_t j, double length) {
+      if (length < run_least) return;
+      double lo = depth(i), hi = lo;
+      for (std::size_t q = i + 1; q < j; ++q) {
+        lo = std::min(lo, depth(q));
+        hi = std::max(hi, depth(q));
+      }
+      if (hi - lo <= flat) visit(stroke, i, j);
+    });
+  }
+}
+
+// The points of `unit`'s strokes at least `overshoot` (along the stroke) from both of its ends
+// (0: every point); a stroke shorter than twice that keeps its middle point.
+Eigen::MatrixX3d stroke_bodies(const Sketch& unit, double overshoot) {
+  std::vector<Eigen::Vector3d> body;
+  for (const Stroke& stroke : unit.strokes) {
+    if (stroke.points.empty()) continue;
+    std::vector<double> at(stroke.points.size(), 0.0);  // arc length from the first point
+    for (std::size_t i = 1; i < at.size(); ++i) at[i] = at[i - 1] + (stroke.points[i] - stroke.points[i - 1]).norm();
+    const double length = at.back();
+    const std::size_t before = body.size();
+    for (std::size_t i = 0; i < at.size(); ++i)
+      if (at[i] >= overshoot && length - at[i] >= overshoot) body.push_back(stroke.points[i]);
+    if (body.size() == before)
+      body.push_back(stroke.points[static_cast<std::size_t>(
+          std::lower_bound(at.begin(), at.end(), 0.5 * length) - at.begin())]);
+  }
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(body.size()), 3);
+  for (std::size_t i = 0; i < body.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = body[i].transpose();
+  return points;
+}
+
+// Where a face drawn near the strokes' extreme `extreme` lies, from the outermost point of the
+// flat runs along it (`runs`, -infinity where no stroke runs along it) and of the strokes'
+// `bodies` (stroke_bodies): at the farther of the two; at the extreme where no stroke runs along
+// the face (a chair's feet, drawn by the ends of its legs' strokes) or where the two are within a
+// quarter of confine_box of it (a hand's tremor). A hand drawing mid-air runs on past the edge
+// where a stroke across the face should stop: the face is where the strokes drawn along it are,
+// not at those ends, while a curved top keeps the crown its cross-sections reach.
+double face_depth(double extreme, double runs, double bodies, const ProxyOptions& options) {
+  if (!std::isfinite(runs)) return extreme;
+  const double depth = std::max(runs, bodies);
+  return extreme - depth >= 0.25 * options.confine_box ? depth : extreme;
+}
+
+// face_depth of the side of the strokes' box where the strokes reach `extreme` along `n` (an axis),
+// the runs along it at least `run_least` long.
+double side_depth(const Sketch& unit, const Eigen::MatrixX3d& bodies, const Eigen::Vector3d& n, double extreme,
+                  double run_least, const ProxyOptions& options) {
+  double runs = -std::numeric_limits<double>::infinity();
+  for_each_flat_run(unit, n, extreme, 2.0 * options.confine_box, run_least, 0.5 * options.confine_box,
+                    [&](const Stroke& stroke, std::size_t i, std::size_t j) {
+                      for (std::size_t q = i; q < j; ++q) runs = std::max(runs, n.dot(stroke.points[q]));
+                    });
+  return face_depth(extreme, runs, (bodies * n).maxCoeff(), options);
+}
+
 // The sides of the strokes' box (`strokes_box`, of `points`; [axis][0: low, 1: high]) where the
 // strokes draw a face: those within confine_box of the side span at least confine_box_span of the
 // box along both of its directions (a box's side, a plate's face, a cup's rim and base). Where
@@ -692,21 +761,12 @@ std::array<std::array<bool, 2>, 3> drawn_faces(const BoundingBox& strokes_box, c
       // Runs of consecutive points within the band whose depth varies by at most half of it,
       // as long as half of confine_box_span of the side's narrower direction.
       const double run_least = 0.5 * options.confine_box_span * std::min(width[u], width[v]);
+      const Eigen::Vector3d n = (high ? 1.0 : -1.0) * Eigen::Vector3d::Unit(a);
       BoundingBox flat;
-      for (const Stroke& stroke : unit.strokes) {
-        const auto point = [&](std::size_t i) -> const Eigen::Vector3d& { return stroke.points[i]; };
-        const auto inside = [&](std::size_t i) { return gap_of(stroke.points[i]) <= options.confine_box; };
-        for_each_run(0, stroke.points.size(), point, inside, [&](std::size_t i, std::size_t j, double length) {
-          if (length < run_least) return;
-          double lo = gap_of(stroke.points[i]), hi = lo;
-          for (std::size_t q = i + 1; q < j; ++q) {
-            lo = std::min(lo, gap_of(stroke.points[q]));
-            hi = std::max(hi, gap_of(stroke.points[q]));
-          }
-          if (hi - lo <= 0.5 * options.confine_box)
-            for (std::size_t q = i; q < j; ++q) flat.extend(stroke.points[q]);
-        });
-      }
+      for_each_flat_run(unit, n, n.dot(high ? strokes_box.max : strokes_box.min), options.confine_box, run_least,
+                        0.5 * options.confine_box, [&](const Stroke& stroke, std::size_t i, std::size_t j) {
+                          for (std::size_t q = i; q < j; ++q) flat.extend(stroke.points[q]);
+                        });
       if (flat.empty()) continue;
       const double su = (flat.max[u] - flat.min[u]) / width[u], sv = (flat.max[v] - flat.min[v]) / width[v];
       faces[a][high] = std::max(su, sv) >= options.confine_box_span && std::min(su, sv) >= options.confine_box_partial;
@@ -738,6 +798,7 @@ std::vector<Plane> drawn_planes(const Sketch& unit, const ProxyOptions& options)
   }
   starts.push_back(count);
   const auto support = [&](const Eigen::Vector3d& n) { return (points * n).maxCoeff(); };
+  const Eigen::MatrixX3d bodies = stroke_bodies(unit, options.overshoot);
   const auto extent = [](const Eigen::VectorXd& x) { return x.maxCoeff() - x.minCoeff(); };
   for (int k = 0; k < kDirections; ++k) {
     // Fibonacci sphere: evenly spread, the same on every machine.
@@ -783,6 +844,8 @@ std::vector<Plane> drawn_planes(const Sketch& unit, const ProxyOptions& options)
       return extent(runs * e) >= options.confine_box_span * extent(points * e);
     };
     if (!spans(first) || !spans(second)) continue;
+    // The face lies where its runs do, not at the ends of strokes across it that run on past it.
+    plane.offset = -face_depth(-plane.offset, (runs * plane.normal).maxCoeff(), (bodies * plane.normal).maxCoeff(), options);
     const bool known = std::any_of(planes.begin(), planes.end(), [&](const Plane& q) {
       return q.normal.dot(plane.normal) >= same && std::abs(q.offset - plane.offset) <= options.confine_box;
     });
@@ -834,6 +897,7 @@ bool ProxyOptions::valid(std::string* why) const {
     return fail("proxy confine_box_span must be in [0, 1]");
   if (!(confine_box_partial >= 0.0 && confine_box_partial <= 1.0))
     return fail("proxy confine_box_partial must be in [0, 1]");
+  if (!(overshoot >= 0.0 && overshoot < 1.0)) return fail("proxy overshoot must be in [0, 1)");
   if (!(outline_gap >= 0.0 && outline_gap < 1.0)) return fail("proxy outline_gap must be in [0, 1)");
   if (!(outline_reach > 0.0 && outline_reach < 1.0))
     return fail("proxy outline_reach must be in (0, 1)");
@@ -982,6 +1046,16 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.confine_radius = options.confine_radius;
   BoundingBox strokes_box;
   for (Eigen::Index i = 0; i < stroke_points.rows(); ++i) strokes_box.extend(stroke_points.row(i).transpose());
+  // The sides where faces are drawn in: where the strokes drawn along each lie (side_depth).
+  BoundingBox face_box = strokes_box;
+  const Eigen::MatrixX3d bodies = stroke_bodies(unit, options.overshoot);
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3d width = strokes_box.max - strokes_box.min;
+    const double run_least = 0.5 * options.confine_box_span * std::min(width[(a + 1) % 3], width[(a + 2) % 3]);
+    const Eigen::Vector3d n = Eigen::Vector3d::Unit(a);
+    face_box.max[a] = side_depth(unit, bodies, n, strokes_box.max[a], run_least, options);
+    face_box.min[a] = -side_depth(unit, bodies, -n, -strokes_box.min[a], run_least, options);
+  }
   BoundingBox within = strokes_box;
   within.min.array() -= options.confine_box;
   within.max.array() += options.confine_box;
@@ -1373,8 +1447,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   const auto draw_in = [&](const FaceMargins& margins) {
     BoundingBox tight = within;
     for (int a = 0; a < 3; ++a) {
-      if (margins[a][0] > 0.0) tight.min[a] = strokes_box.min[a] - margins[a][0];
-      if (margins[a][1] > 0.0) tight.max[a] = strokes_box.max[a] + margins[a][1];
+      if (margins[a][0] > 0.0) tight.min[a] = face_box.min[a] - margins[a][0];
+      if (margins[a][1] > 0.0) tight.max[a] = face_box.max[a] + margins[a][1];
     }
     const auto reaches_past = [&](const TriangleArrays& mesh) {
       for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
@@ -1425,8 +1499,8 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
           ++r.box_drawn_in;
           Plane face;
           face.normal = (side == 1 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(a);
-          face.offset = side == 1 ? -(strokes_box.max[a] + kept_margins[a][side])
-                                  : strokes_box.min[a] - kept_margins[a][side];
+          face.offset = side == 1 ? -(face_box.max[a] + kept_margins[a][side])
+                                  : face_box.min[a] - kept_margins[a][side];
           drawn.push_back(face);
         }
   }

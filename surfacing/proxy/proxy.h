@@ -120,6 +120,10 @@ struct ProxyOptions {
                                      ///< directions and this fraction along the other: a face
                                      ///< filling part of its side, such as the thin end of an
                                      ///< L-bracket's arm (1 = off)
+  double overshoot = 0.03;   ///< how far (fraction of the diagonal, along the stroke) a hand's
+                             ///< stroke may run on past the edge where it should stop: a face
+                             ///< drawn in lies where the strokes along it are, not at the ends of
+                             ///< strokes across it that far out (0 = at the outermost point)
   double outline_gap = 0.04;    ///< with confine_radius > 0, no surface farther than this
                                 ///< (fraction of diagonal; 0 = off) beyond the sketch's
                                 ///< outline: at a stroke point whose nearby
