@@ -733,6 +733,13 @@ double side_depth(const Sketch& unit, const Eigen::MatrixX3d& bodies, const Eige
   return face_depth(extreme, runs, (bodies * n).maxCoeff(), options);
 }
 
+// How long a flat run along a side of `strokes_box` across `axis` is at least: half of
+// confine_box_span of the side's narrower direction.
+double side_run_least(const BoundingBox& strokes_box, int axis, const ProxyOptions& options) {
+  const Eigen::Vector3d width = strokes_box.max - strokes_box.min;
+  return 0.5 * options.confine_box_span * std::min(width[(axis + 1) % 3], width[(axis + 2) % 3]);
+}
+
 // The sides of the strokes' box (`strokes_box`, of `points`; [axis][0: low, 1: high]) where the
 // strokes draw a face: those within confine_box of the side span at least confine_box_span of the
 // box along both of its directions (a box's side, a plate's face, a cup's rim and base). Where
@@ -758,9 +765,8 @@ std::array<std::array<bool, 2>, 3> drawn_faces(const BoundingBox& strokes_box, c
       faces[a][high] = !near.empty() && near.max[u] - near.min[u] >= options.confine_box_span * width[u] &&
                        near.max[v] - near.min[v] >= options.confine_box_span * width[v];
       if (faces[a][high] || !(options.confine_box_partial < options.confine_box_span)) continue;
-      // Runs of consecutive points within the band whose depth varies by at most half of it,
-      // as long as half of confine_box_span of the side's narrower direction.
-      const double run_least = 0.5 * options.confine_box_span * std::min(width[u], width[v]);
+      // Runs of consecutive points within the band whose depth varies by at most half of it.
+      const double run_least = side_run_least(strokes_box, a, options);
       const Eigen::Vector3d n = (high ? 1.0 : -1.0) * Eigen::Vector3d::Unit(a);
       BoundingBox flat;
       for_each_flat_run(unit, n, n.dot(high ? strokes_box.max : strokes_box.min), options.confine_box, run_least,
@@ -782,8 +788,9 @@ std::array<std::array<bool, 2>, 3> drawn_faces(const BoundingBox& strokes_box, c
 // those runs span at least confine_box_span of that extent along both principal directions. A
 // smooth shape's supporting plane only touches it: the strokes over a dome or a lobe stay near it
 // for a short arc, and the surface between them bulges past it. Planes within a few degrees of an
-// axis are the box's sides (drawn_faces).
-std::vector<Plane> drawn_planes(const Sketch& unit, const ProxyOptions& options) {
+// axis are the box's sides (drawn_faces). Each face lies at face_depth of its runs and of the
+// strokes' `bodies` (stroke_bodies).
+std::vector<Plane> drawn_planes(const Sketch& unit, const Eigen::MatrixX3d& bodies, const ProxyOptions& options) {
   constexpr int kDirections = 256, kRefits = 4;
   const double axis_near = portable::cos(5.0 * M_PI / 180.0), same = portable::cos(2.0 * M_PI / 180.0);
   std::vector<Plane> planes;
@@ -798,7 +805,6 @@ std::vector<Plane> drawn_planes(const Sketch& unit, const ProxyOptions& options)
   }
   starts.push_back(count);
   const auto support = [&](const Eigen::Vector3d& n) { return (points * n).maxCoeff(); };
-  const Eigen::MatrixX3d bodies = stroke_bodies(unit, options.overshoot);
   const auto extent = [](const Eigen::VectorXd& x) { return x.maxCoeff() - x.minCoeff(); };
   for (int k = 0; k < kDirections; ++k) {
     // Fibonacci sphere: evenly spread, the same on every machine.
@@ -1050,8 +1056,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   BoundingBox face_box = strokes_box;
   const Eigen::MatrixX3d bodies = stroke_bodies(unit, options.overshoot);
   for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3d width = strokes_box.max - strokes_box.min;
-    const double run_least = 0.5 * options.confine_box_span * std::min(width[(a + 1) % 3], width[(a + 2) % 3]);
+    const double run_least = side_run_least(strokes_box, a, options);
     const Eigen::Vector3d n = Eigen::Vector3d::Unit(a);
     face_box.max[a] = side_depth(unit, bodies, n, strokes_box.max[a], run_least, options);
     face_box.min[a] = -side_depth(unit, bodies, -n, -strokes_box.min[a], run_least, options);
@@ -1506,7 +1511,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   }
   // The slanted faces the strokes draw (drawn_planes), cut close to their strokes in the same way
   // where the surface reaches past them.
-  const std::vector<Plane> planes = faces_drawn_in ? drawn_planes(unit, options) : std::vector<Plane>{};
+  const std::vector<Plane> planes = faces_drawn_in ? drawn_planes(unit, bodies, options) : std::vector<Plane>{};
   const auto moved_out = [&](double face_margin) {
     std::vector<Plane> moved = planes;
     for (Plane& plane : moved) plane.offset -= face_margin;
