@@ -44,6 +44,27 @@ TEST(Decorations, AnAntennaHangingByOneEndIsFound) {
   EXPECT_EQ(found[0].kind, DecorationKind::Dangling);
 }
 
+TEST(Decorations, AnEdgeOfAFaceWhoseNeighbouringEdgesAreMissingIsKept) {
+  // A cube whose two bottom edges at one corner were left out: the vertical edge above that
+  // corner touches the others by its top end only, and its free end is a side away from them.
+  Sketch cube = testing::cube_sketch(1.0, false);
+  const V3 corner(-0.5, -0.5, -0.5);
+  const auto at_corner = [&](const Stroke& s) {
+    return (s.points.front() - corner).norm() < 1e-9 || (s.points.back() - corner).norm() < 1e-9;
+  };
+  std::erase_if(cube.strokes, [&](const Stroke& s) { return at_corner(s) && s.points.back().y() < 0.0; });
+  ASSERT_EQ(cube.strokes.size(), 10u);
+  EXPECT_TRUE(find_decorations(testing::prepared_sketch(cube)).empty());
+
+  // The same edge standing out of the box is an antenna.
+  for (Stroke& s : cube.strokes)
+    if (at_corner(s)) s = segment(V3(-0.5, 0.5, -0.5), V3(-1.1, -0.2, -1.1));
+  const Sketch s = testing::prepared_sketch(cube);
+  const auto found = find_decorations(s);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].kind, DecorationKind::Dangling);
+}
+
 // A sphere with a cable: a long curve hanging from it whose far end carries a plug (a small loop
 // and a short stroke across it, touching only the cable).
 Sketch sphere_with_cable() {
