@@ -1360,7 +1360,7 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   // near the webs free to follow; kept when much less of the surface lies far from every stroke
   // (the web was such surface), without more than one handle more or another part. Also where
   // most of the surface lies far from every stroke: a web can be most of it (a lamp's pole
-  // spread into a wall down to its base).
+  // spread into a wall down to its base, its arms and shade in one hull).
   if (options.part_reach > 0.0 && kept.mesh.F.rows() > 0) {
     const auto t = Clock::now();
     const Eigen::MatrixX3d& at = kept.samples == static_cast<std::size_t>(samples.rows()) ? samples : dense;
@@ -1386,8 +1386,13 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                            options.part_free * options.part_free;
       }
       Candidate c = solve(kept.lambda, at, &from);
-      if (c.mesh.F.rows() > 0 && c.genus <= kept.genus + 1 && c.components <= kept.components &&
-          c.far <= options.part_far_ratio * kept.far && c.far + options.far_tie <= kept.far) {
+      // Where most of the surface is far from every stroke (far_most), the kept solve is a blob
+      // round all the parts (a lamp's base, arms and shade in one hull): any solve with clearly
+      // less such surface follows the parts better, even when a part it frees comes apart.
+      const bool blob = kept.far > options.far_most;
+      if (c.mesh.F.rows() > 0 && c.genus <= kept.genus + 1 &&
+          (blob || (c.components <= kept.components && c.far <= options.part_far_ratio * kept.far)) &&
+          c.far + options.far_tie <= kept.far) {
         kept = std::move(c);
         r.part_normals = static_cast<std::size_t>(std::count(parts.known.begin(), parts.known.end(), 1));
       }

@@ -246,6 +246,16 @@ TEST(FoldData, ATorchsFlameDoesNotFoldThroughItself) {
   EXPECT_LT(r.report.stroke_distance.median, 0.005);
 }
 
+TEST(FoldData, AnArmLampIsALampNotAFoldedHull) {
+  // cassie/01-0-1: an arm lamp drawn by its outlines. On a proxy that wrapped base, arms and shade
+  // in one hull, the regions' models folded the hull through itself (3,575 crossing triangle
+  // pairs the proxy lacked). On the proxy that keeps the arms' own normals, the final is base,
+  // arms and shade, and folds no more than its proxy.
+  const SurfaceResult r = surfaced_without_folds(fs::path("cassie") / "01-0-1.curves");
+  EXPECT_GT(r.report.proxy.part_normals, 0u);
+  EXPECT_LT(r.report.stroke_distance.median, 0.0045);
+}
+
 TEST(FoldData, AChestsFoldTooWideToFillIsHeldAtTheProxy) {
   // tilt/Dungeon_Chest: the solve folds a region's surface through another's over more than a fill
   // may span (both fills leave over a hundred crossing pairs). That region is held at the proxy

@@ -1,5 +1,7 @@
 #include "tests/support/sections.h"
 
+#include <cmath>
+#include <utility>
 #include <vector>
 
 #include "surfacing/sketch/sketch.h"
@@ -35,6 +37,27 @@ double section_width(const TriMesh& mesh, double height) {
     box.extend(a + (height - a.y()) / (b.y() - a.y()) * (b - a));
   }
   return box.diagonal();
+}
+
+double section_area(const TriMesh& mesh, double height) {
+  double twice = 0.0;
+  for (const auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> corners;
+    for (const auto v : f.vertices()) corners.push_back(to_eigen(mesh.point(v)));
+    std::vector<Eigen::Vector3d> crossings;
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const Eigen::Vector3d &a = corners[k], &b = corners[(k + 1) % corners.size()];
+      if ((a.y() > height) != (b.y() > height)) crossings.push_back(a + (height - a.y()) / (b.y() - a.y()) * (b - a));
+    }
+    if (crossings.size() != 2) continue;
+    // The segment runs along the outward normal crossed with the plane's normal: each loop is
+    // walked one way round, holes the other.
+    const Eigen::Vector3d normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+    Eigen::Vector3d p = crossings[0], q = crossings[1];
+    if ((q - p).dot(normal.cross(Eigen::Vector3d::UnitY())) < 0.0) std::swap(p, q);
+    twice += p.z() * q.x() - p.x() * q.z();
+  }
+  return std::abs(0.5 * twice);
 }
 
 }  // namespace sketchsurf::testing

@@ -16,4 +16,8 @@ std::size_t section_loops(const TriMesh& mesh, double height);
 /// its edges cross the plane); 0 when the plane misses the mesh.
 double section_width(const TriMesh& mesh, double height);
 
+/// Area enclosed by the section of a closed mesh by the plane y = height (its holes taken out):
+/// how much of the slab a part fills, a thin arm's little, a hull's round it much.
+double section_area(const TriMesh& mesh, double height);
+
 }  // namespace sketchsurf::testing
