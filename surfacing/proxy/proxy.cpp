@@ -1386,13 +1386,13 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
                            options.part_free * options.part_free;
       }
       Candidate c = solve(kept.lambda, at, &from);
-      // Where most of the surface is far from every stroke (far_most), the kept solve is a blob
-      // round all the parts (a lamp's base, arms and shade in one hull): any solve with clearly
-      // less such surface follows the parts better, even when a part it frees comes apart.
-      const bool blob = kept.far > options.far_most;
-      if (c.mesh.F.rows() > 0 && c.genus <= kept.genus + 1 &&
-          (blob || (c.components <= kept.components && c.far <= options.part_far_ratio * kept.far)) &&
-          c.far + options.far_tie <= kept.far) {
+      // Where most of the surface is far from every stroke (far_most), the kept solve is a hull
+      // round all the parts (a lamp's base, arms and shade): a solve with clearly less such
+      // surface follows the parts better, even when one part it frees comes apart.
+      const bool hull = kept.far > options.far_most;
+      const std::size_t parts_more = hull ? 1 : 0;
+      if (c.mesh.F.rows() > 0 && c.genus <= kept.genus + 1 && c.components <= kept.components + parts_more &&
+          (hull || c.far <= options.part_far_ratio * kept.far) && c.far + options.far_tie <= kept.far) {
         kept = std::move(c);
         r.part_normals = static_cast<std::size_t>(std::count(parts.known.begin(), parts.known.end(), 1));
       }

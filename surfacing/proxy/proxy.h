@@ -208,8 +208,8 @@ struct ProxyOptions {
                                 ///< torch's 0.68; rims and double walls that look like thin
                                 ///< parts, 0.87 and more), with at most one handle more and no
                                 ///< other part; where more than far_most of the other's surface is
-                                ///< far (a blob round all the parts), whenever it is smaller by
-                                ///< far_tie, with at most one handle more
+                                ///< far (a hull round all the parts), whenever it is smaller by
+                                ///< far_tie, with at most one handle and one part more
   double min_component = 0.01;  ///< parts of the polygonised surface with less than this fraction
                                 ///< of its area are dropped (specks the confinement cuts off)
   double vipss_tolerance = 1e-7;  ///< L-BFGS relative energy change at which the normals are
