@@ -144,31 +144,14 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
     return true;
   };
 
-  // Whether stroke `s` lies along a side of the box of the strokes other than it and `group`,
-  // within `r` of that side and of the box: an edge of a face drawn on that side, whose
-  // neighbouring edge the hand left out (a box's end drawn by three of its four edges). Its free
-  // end lies where the object already is; an antenna's or a cable's runs out of it.
-  const auto along_side = [&](std::size_t s, const std::vector<std::size_t>& group) {
-    BoundingBox box;
-    for (std::size_t t = 0; t < n; ++t)
-      if (t != s && !sketch.strokes[t].ignored && std::find(group.begin(), group.end(), t) == group.end())
-        merge(box, stroke_box[t]);
-    if (box.empty()) return false;
-    const Eigen::Array3d lo = box.min.array() - r, hi = box.max.array() + r;
-    const std::vector<V3>& points = sketch.strokes[s].points;
-    if (!std::all_of(points.begin(), points.end(),
-                     [&](const V3& p) { return (p.array() >= lo).all() && (p.array() <= hi).all(); }))
-      return false;
-    for (int axis = 0; axis < 3; ++axis)
-      for (const double side : {box.min[axis], box.max[axis]})
-        if (std::all_of(points.begin(), points.end(), [&](const V3& p) { return std::abs(p[axis] - side) <= r; }))
-          return true;
-    return false;
-  };
-
   std::vector<char> small(n, 0), dangling(n, 0), dot(n, 0);
   const double free = options.free_end * diagonal;
   std::vector<std::size_t> group;
+  struct Hanging {
+    std::size_t stroke;
+    std::vector<std::size_t> carried;
+  };
+  std::vector<Hanging> hanging;  // strokes touching the others by one end, and what they carry
   for (std::size_t s = 0; s < n; ++s) {
     const Stroke& stroke = sketch.strokes[s];
     if (stroke.ignored || stroke.boundary || stroke.size() < 2) continue;
@@ -207,11 +190,40 @@ std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationO
       // floor, a string passing by a handle); one that runs beside other strokes for most of
       // its middle is an edge of a thin part (a chair's leg whose foot ring it touches).
       if (!group.empty() && middle_taken(stroke, options.end_share, only_group) > 0.5) continue;
-      if (along_side(s, group)) break;
-      dangling[s] = 1;
-      for (std::size_t t : group) small[t] = 1;
+      hanging.push_back({s, group});
       break;
     }
+  }
+  // The box of the strokes that depict the object: all but those found above. A hanging stroke
+  // lying along a side of that box, within `r` of the side and inside the box grown by `r`, is an
+  // edge of a face drawn on that side whose neighbouring edge the hand left out (a box's end drawn
+  // by three of its four edges): its free end lies where the object already is. An antenna's, a
+  // cable's or a line leg's runs out of it.
+  std::vector<char> found(n, 0);
+  for (std::size_t s = 0; s < n; ++s) found[s] = small[s] || dot[s] || dangling[s];
+  for (const Hanging& h : hanging) {
+    found[h.stroke] = 1;
+    for (std::size_t t : h.carried) found[t] = 1;
+  }
+  BoundingBox object;
+  for (std::size_t t = 0; t < n; ++t)
+    if (!found[t] && !sketch.strokes[t].ignored) merge(object, stroke_box[t]);
+  const auto along_side = [&](const std::vector<V3>& points) {
+    if (object.empty()) return false;
+    const Eigen::Array3d lo = object.min.array() - r, hi = object.max.array() + r;
+    if (!std::all_of(points.begin(), points.end(),
+                     [&](const V3& p) { return (p.array() >= lo).all() && (p.array() <= hi).all(); }))
+      return false;
+    for (int axis = 0; axis < 3; ++axis)
+      for (const double side : {object.min[axis], object.max[axis]})
+        if (std::all_of(points.begin(), points.end(), [&](const V3& p) { return std::abs(p[axis] - side) <= r; }))
+          return true;
+    return false;
+  };
+  for (const Hanging& h : hanging) {
+    if (along_side(sketch.strokes[h.stroke].points)) continue;
+    dangling[h.stroke] = 1;
+    for (std::size_t t : h.carried) small[t] = 1;
   }
   for (std::size_t s = 0; s < n; ++s) {
     const Stroke& stroke = sketch.strokes[s];

@@ -53,11 +53,11 @@ struct Decoration {
 /// strokes excepted); and the small group such a stroke carries, when the strokes it touches away
 /// from its attached end reach the rest only through it and at most half of the stroke's
 /// middle (between the end shares) comes within free_end of other strokes (they are reported
-/// as a small group). A one-end stroke lying within `touch` of a side of the other strokes' box,
-/// and inside that box grown by `touch`, is an edge of a face drawn on that side whose
-/// neighbouring edge is missing, not an antenna, and is kept. Strokes already ignored, boundary
-/// strokes and strokes of fewer than 2 points are left out of the test (boundary strokes still
-/// count as neighbours). Deterministic; `sketch` should be resampled (the test runs on its points).
+/// as a small group). A one-end stroke lying within `touch` of a side of the box of the strokes
+/// not found by these tests, and inside that box grown by `touch`, is an edge of a face drawn on
+/// that side whose neighbouring edge is missing, not an antenna, and is kept. Strokes already
+/// ignored, boundary strokes and strokes of fewer than 2 points are left out of the test
+/// (boundary strokes still count as neighbours). Deterministic; `sketch` should be resampled (the test runs on its points).
 std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationOptions& options = {});
 
 }  // namespace sketchsurf
