@@ -65,6 +65,19 @@ TEST(Decorations, AnEdgeOfAFaceWhoseNeighbouringEdgesAreMissingIsKept) {
   EXPECT_EQ(found[0].kind, DecorationKind::Dangling);
 }
 
+TEST(Decorations, LineLegsAlongTheBoxTheyStretchAreNotFacesEdges) {
+  // A slab on four legs drawn as single lines: each leg lies along two sides of the box that the
+  // other three stretch down to their feet, but the box of the strokes that stay is the slab's.
+  Sketch table = testing::cube_sketch(1.0, true);
+  for (Stroke& s : table.strokes)
+    for (V3& p : s.points) p.y() *= 0.15;
+  for (double x : {-0.5, 0.5})
+    for (double z : {-0.5, 0.5}) table.strokes.push_back(segment(V3(x, -0.075, z), V3(x, -0.8, z)));
+  const auto found = find_decorations(testing::prepared_sketch(table));
+  ASSERT_EQ(found.size(), 4u);
+  for (const Decoration& d : found) EXPECT_EQ(d.kind, DecorationKind::Dangling);
+}
+
 // A sphere with a cable: a long curve hanging from it whose far end carries a plug (a small loop
 // and a short stroke across it, touching only the cable).
 Sketch sphere_with_cable() {
