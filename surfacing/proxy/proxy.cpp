@@ -1052,15 +1052,6 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   r.confine_radius = options.confine_radius;
   BoundingBox strokes_box;
   for (Eigen::Index i = 0; i < stroke_points.rows(); ++i) strokes_box.extend(stroke_points.row(i).transpose());
-  // The sides where faces are drawn in: where the strokes drawn along each lie (side_depth).
-  BoundingBox face_box = strokes_box;
-  const Eigen::MatrixX3d bodies = stroke_bodies(unit, options.overshoot);
-  for (int a = 0; a < 3; ++a) {
-    const double run_least = side_run_least(strokes_box, a, options);
-    const Eigen::Vector3d n = Eigen::Vector3d::Unit(a);
-    face_box.max[a] = side_depth(unit, bodies, n, strokes_box.max[a], run_least, options);
-    face_box.min[a] = -side_depth(unit, bodies, -n, -strokes_box.min[a], run_least, options);
-  }
   BoundingBox within = strokes_box;
   within.min.array() -= options.confine_box;
   within.max.array() += options.confine_box;
@@ -1449,6 +1440,20 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
   const auto faces = drawn_faces(strokes_box, stroke_points, unit, options);
   int face_count = 0;
   for (const auto& axis : faces) face_count += axis[0] + axis[1];
+  // Faces are drawn in on their strokes, else halfway out to the box; whether either cut was kept.
+  const bool faces_drawn_in = r.confine_radius > 0.0 && options.confine_box_tight > 0.0 &&
+                              options.confine_box_tight < options.confine_box;
+  // The sides where faces are drawn in: where the strokes drawn along each lie (side_depth); the
+  // strokes' bodies place the slanted faces too (drawn_planes).
+  const Eigen::MatrixX3d bodies = faces_drawn_in ? stroke_bodies(unit, options.overshoot) : Eigen::MatrixX3d(0, 3);
+  BoundingBox face_box = strokes_box;
+  if (faces_drawn_in && face_count > 0)
+    for (int a = 0; a < 3; ++a) {
+      const double run_least = side_run_least(strokes_box, a, options);
+      const Eigen::Vector3d n = Eigen::Vector3d::Unit(a);
+      face_box.max[a] = side_depth(unit, bodies, n, strokes_box.max[a], run_least, options);
+      face_box.min[a] = -side_depth(unit, bodies, -n, -strokes_box.min[a], run_least, options);
+    }
   // Per side of the box ([axis][0: low, 1: high]), how far out of the strokes it is drawn in
   // (0: not drawn in, left at the confinement's box).
   using FaceMargins = std::array<std::array<double, 2>, 3>;
@@ -1470,9 +1475,6 @@ TriMesh make_proxy(const Sketch& sketch, const ProxyOptions& options, const Prog
     return kept.mesh.F.rows() > 0 && reaches_past(kept.mesh) &&
            try_cut([&](ConfinedField& g) { g.set_within(tight); });
   };
-  // Faces are drawn in on their strokes, else halfway out to the box; whether either cut was kept.
-  const bool faces_drawn_in = r.confine_radius > 0.0 && options.confine_box_tight > 0.0 &&
-                              options.confine_box_tight < options.confine_box;
   // The margin of the cut kept, if either was.
   const auto close_or_halfway = [&](auto&& cut) -> std::optional<double> {
     for (const double margin : {options.confine_box_tight, 0.5 * (options.confine_box_tight + options.confine_box)})
