@@ -161,6 +161,8 @@ const std::map<std::string, Setter>& parameter_table() {
       {"proxy.min_component", setter([](Params& p) -> auto& { return p.proxy.min_component; })},
       {"proxy.vipss_tolerance", setter([](Params& p) -> auto& { return p.proxy.vipss_tolerance; })},
       {"proxy.vipss_remesh_iterations", setter([](Params& p) -> auto& { return p.proxy.vipss_remesh_iterations; })},
+      {"proxy.projection_steps", setter([](Params& p) -> auto& { return p.proxy.projection_steps; })},
+      {"proxy.sample_spacing", setter([](Params& p) -> auto& { return p.proxy.sample_spacing; })},
       {"segment.epsilon", setter([](Params& p) -> auto& { return p.segment.epsilon; })},
       {"segment.w_smooth", setter([](Params& p) -> auto& { return p.segment.w_smooth; })},
       {"segment.w_simp", setter([](Params& p) -> auto& { return p.segment.w_simp; })},
