@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -165,7 +166,19 @@ int main(int argc, char** argv) {
         std::cerr << "quality_bench: --param expects NAME=VALUE, got '" << assignment << "'\n";
         return 2;
       }
-      params.apply({{assignment.substr(0, eq), std::stod(assignment.substr(eq + 1))}});
+      double value = 0.0;
+      try {
+        value = std::stod(assignment.substr(eq + 1));
+      } catch (const std::logic_error&) {  // not a number, or out of a double's range
+        std::cerr << "quality_bench: --param " << assignment << ": the value is not a number\n";
+        return 2;
+      }
+      try {
+        params.apply({{assignment.substr(0, eq), value}});
+      } catch (const Error& e) {  // an unknown name
+        std::cerr << "quality_bench: --param " << assignment << ": " << e.what() << "\n";
+        return 2;
+      }
     } else {
       std::cerr << "quality_bench: unknown option " << argv[i] << "\n";
       return 2;
