@@ -175,7 +175,7 @@ int main(int argc, char** argv) {
       }
       try {
         params.apply({{assignment.substr(0, eq), value}});
-      } catch (const Error& e) {  // an unknown name
+      } catch (const Error& e) {  // an unknown name, a fraction for a count, a value out of range
         std::cerr << "quality_bench: --param " << assignment << ": " << e.what() << "\n";
         return 2;
       }
