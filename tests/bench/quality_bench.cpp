@@ -147,40 +147,36 @@ int main(int argc, char** argv) {
       std::cerr << "quality_bench: " << argv[i] << " expects a value (--help lists the options)\n";
       return 2;
     }
-    if (!std::strcmp(argv[i], "--cases")) cases = split(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--styles")) styles = split(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--restarts")) params.segment.restarts = std::stoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seed") || !std::strcmp(argv[i], "--seeds")) {
-      seeds.clear();
-      for (const std::string& s : split(argv[i + 1])) seeds.push_back(static_cast<unsigned>(std::stoul(s)));
-      if (seeds.empty()) {
-        std::cerr << "quality_bench: " << argv[i] << " expects a comma-separated list of seeds\n";
+    try {  // the numbers' parsing (std::stoi, stoul, stod) throws on what is not a number
+      if (!std::strcmp(argv[i], "--cases")) cases = split(argv[i + 1]);
+      else if (!std::strcmp(argv[i], "--styles")) styles = split(argv[i + 1]);
+      else if (!std::strcmp(argv[i], "--restarts")) params.segment.restarts = std::stoi(argv[i + 1]);
+      else if (!std::strcmp(argv[i], "--seed") || !std::strcmp(argv[i], "--seeds")) {
+        seeds.clear();
+        for (const std::string& s : split(argv[i + 1])) seeds.push_back(static_cast<unsigned>(std::stoul(s)));
+        if (seeds.empty()) {
+          std::cerr << "quality_bench: " << argv[i] << " expects a comma-separated list of seeds\n";
+          return 2;
+        }
+      }
+      else if (!std::strcmp(argv[i], "--write")) write_dir = argv[i + 1];
+      else if (!std::strcmp(argv[i], "--param")) {  // a parameter as Params::apply() names it
+        const std::string assignment = argv[i + 1];
+        const std::size_t eq = assignment.find('=');
+        if (eq == std::string::npos) {
+          std::cerr << "quality_bench: --param expects NAME=VALUE, got '" << assignment << "'\n";
+          return 2;
+        }
+        params.apply({{assignment.substr(0, eq), std::stod(assignment.substr(eq + 1))}});
+      } else {
+        std::cerr << "quality_bench: unknown option " << argv[i] << "\n";
         return 2;
       }
-    }
-    else if (!std::strcmp(argv[i], "--write")) write_dir = argv[i + 1];
-    else if (!std::strcmp(argv[i], "--param")) {  // a parameter as Params::apply() names it
-      const std::string assignment = argv[i + 1];
-      const std::size_t eq = assignment.find('=');
-      if (eq == std::string::npos) {
-        std::cerr << "quality_bench: --param expects NAME=VALUE, got '" << assignment << "'\n";
-        return 2;
-      }
-      double value = 0.0;
-      try {
-        value = std::stod(assignment.substr(eq + 1));
-      } catch (const std::logic_error&) {  // not a number, or out of a double's range
-        std::cerr << "quality_bench: --param " << assignment << ": the value is not a number\n";
-        return 2;
-      }
-      try {
-        params.apply({{assignment.substr(0, eq), value}});
-      } catch (const Error& e) {  // an unknown name, a fraction for a count, a value out of range
-        std::cerr << "quality_bench: --param " << assignment << ": " << e.what() << "\n";
-        return 2;
-      }
-    } else {
-      std::cerr << "quality_bench: unknown option " << argv[i] << "\n";
+    } catch (const std::logic_error&) {  // not a number, or out of its type's range
+      std::cerr << "quality_bench: " << argv[i] << " " << argv[i + 1] << ": not a number\n";
+      return 2;
+    } catch (const Error& e) {  // --param: an unknown name, a fraction for a count, out of range
+      std::cerr << "quality_bench: " << argv[i] << " " << argv[i + 1] << ": " << e.what() << "\n";
       return 2;
     }
   }
