@@ -57,7 +57,8 @@ struct Decoration {
 /// not found by these tests, and inside that box grown by `touch`, is an edge of a face drawn on
 /// that side whose neighbouring edge is missing, not an antenna, and is kept. Strokes already
 /// ignored, boundary strokes and strokes of fewer than 2 points are left out of the test
-/// (boundary strokes still count as neighbours). Deterministic; `sketch` should be resampled (the test runs on its points).
+/// (boundary strokes still count as neighbours). Deterministic; `sketch` should be resampled
+/// (the test runs on its points).
 std::vector<Decoration> find_decorations(const Sketch& sketch, const DecorationOptions& options = {});
 
 }  // namespace sketchsurf
